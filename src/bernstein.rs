@@ -1,0 +1,271 @@
+//! The Bernstein basis and the de Casteljau kernels.
+//!
+//! A polynomial of degree `n` in Bernstein form on `[0, 1]` is
+//! `p(t) = Σᵢ cᵢ Bᵢⁿ(t)` with `Bᵢⁿ(t) = C(n, i) tⁱ (1 − t)ⁿ⁻ⁱ`. The coefficients
+//! `cᵢ` may be scalars (`f64`) or vectors (`SVector<f64, D>`): anything that is a
+//! [`Coefficient`].
+//!
+//! The kernels here work in place on a caller's slice, so the curve types can
+//! run them on stack scratch space without allocating. De Casteljau's algorithm
+//! (repeated convex combination) is the evaluator: it is numerically stable
+//! because every step is a convex combination for `t ∈ [0, 1]` (Farin, *Curves
+//! and Surfaces for CAGD*, ch. 4). [`bernstein_sum`], [`to_power_basis`] and
+//! [`horner`] exist as independent references and as speed comparisons for the
+//! tests and benches; they are not used by the curve types.
+//!
+//! ```
+//! use revolve::bernstein::{bernstein, de_casteljau};
+//! // Partition of unity: the cubic basis sums to one.
+//! let sum: f64 = (0..=3).map(|i| bernstein(3, i, 0.3)).sum();
+//! assert!((sum - 1.0).abs() < 1e-15);
+//! // t² written in the quadratic Bernstein basis has coefficients (0, 0, 1).
+//! let mut c = [0.0, 0.0, 1.0];
+//! assert!((de_casteljau(&mut c, 0.5).unwrap() - 0.25).abs() < 1e-15);
+//! ```
+
+use std::ops::{Add, Mul, Sub};
+
+/// A Bernstein coefficient: a scalar or a vector that can be added, subtracted
+/// and scaled by an `f64`. Implemented for `f64` and every nalgebra vector.
+pub trait Coefficient:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self>
+{
+}
+
+impl<T> Coefficient for T where T: Copy + Add<Output = T> + Sub<Output = T> + Mul<f64, Output = T> {}
+
+/// `(1 − t)·a + t·b`, the step of de Casteljau's and de Boor's algorithms.
+#[inline(always)]
+pub fn lerp<T: Coefficient>(a: T, b: T, t: f64) -> T {
+    a * (1.0 - t) + b * t
+}
+
+/// The binomial coefficient `C(n, k)` as an `f64`; zero when `k > n`.
+///
+/// Exact (computed in 128-bit integers) while `C(n, k)` fits, which covers every
+/// degree a spline uses in practice; beyond that a product of ratios, correct to
+/// a few ulps.
+pub fn binomial(n: usize, k: usize) -> f64 {
+    if k > n {
+        return 0.0;
+    }
+    let k = k.min(n - k);
+    let mut exact: u128 = 1;
+    for i in 1..=k {
+        // exact · (n − k + i) / i is C(n − k + i, i): always an integer.
+        match exact.checked_mul((n - k + i) as u128) {
+            Some(x) => exact = x / i as u128,
+            None => {
+                return (1..=k).fold(1.0, |acc, j| acc * (n - k + j) as f64 / j as f64);
+            }
+        }
+    }
+    exact as f64
+}
+
+/// The Bernstein basis polynomial `Bᵢⁿ(t) = C(n, i) tⁱ (1 − t)ⁿ⁻ⁱ`; zero when `i > n`.
+pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
+    if i > n {
+        return 0.0;
+    }
+    binomial(n, i) * powi(t, i) * powi(1.0 - t, n - i)
+}
+
+fn powi(x: f64, n: usize) -> f64 {
+    match i32::try_from(n) {
+        Ok(n) => x.powi(n),
+        Err(_) => x.powf(n as f64),
+    }
+}
+
+/// Evaluates the Bernstein-form polynomial with coefficients `c` at `t` by de
+/// Casteljau's algorithm, overwriting `c` with intermediate values.
+///
+/// Returns `None` only for an empty slice. Cost: `n(n + 1)/2` linear
+/// interpolations for degree `n`; no allocation.
+#[inline]
+pub fn de_casteljau<T: Coefficient>(c: &mut [T], t: f64) -> Option<T> {
+    let n = c.len().checked_sub(1)?;
+    for level in 1..=n {
+        for j in 0..=(n - level) {
+            c[j] = lerp(c[j], c[j + 1], t);
+        }
+    }
+    Some(c[0])
+}
+
+/// Evaluates the polynomial and its first derivative at `t` in one de Casteljau
+/// pass: the two points of the last-but-one level give `p′(t) = n·(b₁ − b₀)`.
+///
+/// Overwrites `c`; returns `None` only for an empty slice. A constant (one
+/// coefficient) has derivative `c₀ · 0`.
+#[inline]
+pub fn de_casteljau_with_derivative<T: Coefficient>(c: &mut [T], t: f64) -> Option<(T, T)> {
+    let n = c.len().checked_sub(1)?;
+    if n == 0 {
+        return Some((c[0], c[0] * 0.0));
+    }
+    for level in 1..n {
+        for j in 0..=(n - level) {
+            c[j] = lerp(c[j], c[j + 1], t);
+        }
+    }
+    let (b0, b1) = (c[0], c[1]);
+    Some((lerp(b0, b1, t), (b1 - b0) * n as f64))
+}
+
+/// Replaces the coefficients of `p` (degree `n = c.len() − 1`) by those of its
+/// derivative `p′` (degree `n − 1`, the hodograph: `n·(cᵢ₊₁ − cᵢ)`), in place in
+/// `c[..n]`, and returns the new length `n`. An empty slice stays empty.
+#[inline]
+pub fn differentiate_in_place<T: Coefficient>(c: &mut [T]) -> usize {
+    let Some(n) = c.len().checked_sub(1) else {
+        return 0;
+    };
+    let scale = n as f64;
+    for j in 0..n {
+        c[j] = (c[j + 1] - c[j]) * scale;
+    }
+    n
+}
+
+/// Splits the polynomial with coefficients `c` at `t` into the coefficients of
+/// its restrictions to `[0, t]` (written to `left`) and `[t, 1]` (written to
+/// `right`), each reparametrized to `[0, 1]`.
+///
+/// `left` and `right` must have the length of `c`; returns `false` (and writes
+/// nothing) otherwise.
+pub fn subdivide<T: Coefficient>(c: &[T], t: f64, left: &mut [T], right: &mut [T]) -> bool {
+    if left.len() != c.len() || right.len() != c.len() || c.is_empty() {
+        return false;
+    }
+    let n = c.len() - 1;
+    right.copy_from_slice(c);
+    for level in 0..n {
+        left[level] = right[0];
+        for j in 0..(n - level) {
+            right[j] = lerp(right[j], right[j + 1], t);
+        }
+    }
+    left[n] = right[0];
+    true
+}
+
+/// Reference evaluator: the Bernstein sum `Σ cᵢ Bᵢⁿ(t)` computed term by term.
+///
+/// Slower and (near the ends, for high degree) less accurate than de Casteljau;
+/// used by tests as an independent second algorithm. `None` for an empty slice.
+pub fn bernstein_sum<T: Coefficient>(c: &[T], t: f64) -> Option<T> {
+    let n = c.len().checked_sub(1)?;
+    let mut acc = c[0] * bernstein(n, 0, t);
+    for (i, &ci) in c.iter().enumerate().skip(1) {
+        acc = acc + ci * bernstein(n, i, t);
+    }
+    Some(acc)
+}
+
+/// Converts Bernstein coefficients to power-basis (monomial) coefficients
+/// `aⱼ = C(n, j) Σᵢ₌₀ʲ (−1)ʲ⁻ⁱ C(j, i) cᵢ`, so that `p(t) = Σ aⱼ tʲ`.
+///
+/// The conversion is ill-conditioned for high degree (the `aⱼ` grow like
+/// `2ⁿ` and alternate in sign); it exists to document that and as a speed
+/// comparison for [`horner`].
+pub fn to_power_basis<T: Coefficient>(c: &[T]) -> Vec<T> {
+    let Some(n) = c.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    (0..=n)
+        .map(|j| {
+            let mut acc = c[0] * 0.0;
+            for (i, &ci) in c.iter().enumerate().take(j + 1) {
+                let sign = if (j - i) % 2 == 0 { 1.0 } else { -1.0 };
+                acc = acc + ci * (sign * binomial(j, i));
+            }
+            acc * binomial(n, j)
+        })
+        .collect()
+}
+
+/// Evaluates the power-basis polynomial `Σ aⱼ tʲ` by Horner's rule.
+/// `None` for an empty slice.
+pub fn horner<T: Coefficient>(a: &[T], t: f64) -> Option<T> {
+    let (&last, rest) = a.split_last()?;
+    Some(rest.iter().rev().fold(last, |acc, &aj| acc * t + aj))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binomials_are_exact() {
+        assert_eq!(binomial(0, 0), 1.0);
+        assert_eq!(binomial(5, 2), 10.0);
+        assert_eq!(binomial(5, 6), 0.0);
+        assert_eq!(binomial(60, 30), 118_264_581_564_861_424.0);
+        // Symmetry and Pascal's rule hold exactly while the values fit.
+        for n in 1..50 {
+            for k in 1..n {
+                assert_eq!(binomial(n, k), binomial(n, n - k));
+                assert_eq!(
+                    binomial(n, k),
+                    binomial(n - 1, k - 1) + binomial(n - 1, k),
+                    "n={n} k={k}"
+                );
+            }
+        }
+        // Beyond u128 the ratio product is still accurate.
+        let big = binomial(200, 100);
+        assert!((big / 9.054_851_465_610_328e58 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn de_casteljau_matches_closed_form_cubic() {
+        // (1 − t)³·1 + 3t(1 − t)²·2 + 3t²(1 − t)·(−1) + t³·4 at t = 0.25.
+        let t: f64 = 0.25;
+        let s = 1.0 - t;
+        let exact = s.powi(3) + 3.0 * t * s * s * 2.0 - 3.0 * t * t * s + 4.0 * t.powi(3);
+        let mut c = [1.0, 2.0, -1.0, 4.0];
+        assert!((de_casteljau(&mut c, t).unwrap() - exact).abs() < 1e-15);
+        assert_eq!(de_casteljau::<f64>(&mut [], t), None);
+    }
+
+    #[test]
+    fn derivative_and_hodograph_agree() {
+        let coeffs = [1.0, 2.0, -1.0, 4.0, 0.5];
+        let mut c = coeffs;
+        let (_, d) = de_casteljau_with_derivative(&mut c, 0.3).unwrap();
+        let mut h = coeffs;
+        let len = differentiate_in_place(&mut h);
+        assert_eq!(len, 4);
+        let d2 = de_casteljau(&mut h[..len], 0.3).unwrap();
+        assert!((d - d2).abs() < 1e-14);
+    }
+
+    #[test]
+    fn subdivision_reproduces_the_polynomial() {
+        let c = [1.0, -2.0, 3.0, 0.5, 2.0];
+        let (mut l, mut r) = ([0.0; 5], [0.0; 5]);
+        assert!(subdivide(&c, 0.4, &mut l, &mut r));
+        for k in 0..=10 {
+            let s = k as f64 / 10.0;
+            let whole_l = bernstein_sum(&c, 0.4 * s).unwrap();
+            let whole_r = bernstein_sum(&c, 0.4 + 0.6 * s).unwrap();
+            assert!((bernstein_sum(&l, s).unwrap() - whole_l).abs() < 1e-14);
+            assert!((bernstein_sum(&r, s).unwrap() - whole_r).abs() < 1e-14);
+        }
+        assert!(!subdivide(&c, 0.4, &mut [0.0; 4], &mut r));
+    }
+
+    #[test]
+    fn power_basis_and_horner_agree_at_low_degree() {
+        let c = [1.0, 2.0, -1.0, 4.0];
+        let a = to_power_basis(&c);
+        for k in 0..=8 {
+            let t = k as f64 / 8.0;
+            let mut w = c;
+            let exact = de_casteljau(&mut w, t).unwrap();
+            assert!((horner(&a, t).unwrap() - exact).abs() < 1e-13);
+        }
+    }
+}

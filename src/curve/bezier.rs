@@ -1,0 +1,187 @@
+//! Bézier curves of any degree and dimension.
+
+use super::flatten::{Flattening, flatten_pieces};
+use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
+use crate::bernstein::{
+    de_casteljau, de_casteljau_with_derivative, differentiate_in_place, subdivide,
+};
+use crate::scratch::with_scratch;
+use crate::{Curve, Error};
+use nalgebra::{Point, SVector};
+
+/// A Bézier curve `P(t) = Σᵢ Pᵢ Bᵢⁿ(t)`, `t ∈ [0, 1]`, of degree `n` (one less
+/// than the number of control points) in `D` dimensions.
+///
+/// Evaluation runs de Casteljau's algorithm on stack scratch space (no heap
+/// allocation up to degree 16). Derivatives of order `k` come from the `k`-th
+/// hodograph, `n!/(n−k)! · Σ Δᵏ Pᵢ Bᵢⁿ⁻ᵏ(t)` (Farin, *Curves and Surfaces for
+/// CAGD*, §5.3).
+///
+/// Parameters outside `[0, 1]` evaluate at the nearest end (the curve is not
+/// extrapolated) and NaN evaluates at `t = 0`, so evaluation never returns NaN.
+///
+/// ```
+/// use revolve::{Bezier, Curve};
+/// use revolve::nalgebra::Point2;
+///
+/// // The parabola y = x² on [0, 1] as a quadratic Bézier.
+/// let parabola = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.5, 0.0), Point2::new(1.0, 1.0)])?;
+/// let p = parabola.eval(0.5);
+/// assert!((p.y - p.x * p.x).abs() < 1e-15);
+/// assert_eq!(parabola.nth_derivative(0.3, 2).y, 2.0);  // second derivative of t²
+/// # Ok::<(), revolve::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bezier<const D: usize> {
+    points: Vec<Point<f64, D>>,
+}
+
+impl<const D: usize> Bezier<D> {
+    /// A Bézier curve through the given control points (degree = count − 1).
+    ///
+    /// # Errors
+    /// [`Error::NoControlPoints`] for an empty list, [`Error::NonFinitePoint`]
+    /// for a NaN or infinite coordinate.
+    pub fn new(points: Vec<Point<f64, D>>) -> Result<Self, Error> {
+        validate_points(&points)?;
+        Ok(Self { points })
+    }
+
+    /// Wraps points the crate computed from valid input (finite, non-empty).
+    pub(crate) fn from_valid_points(points: Vec<Point<f64, D>>) -> Self {
+        debug_assert!(validate_points(&points).is_ok());
+        Self { points }
+    }
+
+    /// The control points.
+    pub fn points(&self) -> &[Point<f64, D>] {
+        &self.points
+    }
+
+    /// The degree `n` (number of control points − 1).
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// The `order`-th derivative `dᵏP/dtᵏ` at `t` (order 0 is the point as a
+    /// vector). Orders above the degree give the zero vector.
+    ///
+    /// No heap allocation up to degree 16.
+    pub fn nth_derivative(&self, t: f64, order: usize) -> SVector<f64, D> {
+        let t = clamp_to_domain(t, (0.0, 1.0));
+        let n = self.points.len();
+        if order >= n {
+            return SVector::zeros();
+        }
+        with_scratch(n, SVector::zeros(), |s| {
+            for (dst, p) in s.iter_mut().zip(&self.points) {
+                *dst = p.coords;
+            }
+            let mut len = n;
+            for _ in 0..order {
+                len = differentiate_in_place(&mut s[..len]);
+            }
+            de_casteljau(&mut s[..len], t).unwrap_or_else(SVector::zeros)
+        })
+    }
+
+    /// The hodograph: the derivative curve `P′(t)`, a Bézier of degree `n − 1`
+    /// with control points `n·(Pᵢ₊₁ − Pᵢ)`. The derivative of a constant curve
+    /// (degree 0) is the constant zero curve.
+    pub fn hodograph(&self) -> Bezier<D> {
+        let n = self.degree();
+        if n == 0 {
+            return Bezier {
+                points: vec![Point::origin()],
+            };
+        }
+        let points = self
+            .points
+            .windows(2)
+            .map(|w| Point::from((w[1] - w[0]) * n as f64))
+            .collect();
+        Bezier { points }
+    }
+
+    /// Splits the curve at `t` into the pieces on `[0, t]` and `[t, 1]`, each a
+    /// Bézier of the same degree reparametrized to `[0, 1]` (de Casteljau
+    /// subdivision).
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside `[0, 1]`.
+    pub fn subdivide(&self, t: f64) -> Result<(Bezier<D>, Bezier<D>), Error> {
+        check_in_domain(t, (0.0, 1.0))?;
+        let coords: Vec<SVector<f64, D>> = self.points.iter().map(|p| p.coords).collect();
+        let mut left = coords.clone();
+        let mut right = coords.clone();
+        subdivide(&coords, t, &mut left, &mut right);
+        let to_points = |v: Vec<SVector<f64, D>>| v.into_iter().map(Point::from).collect();
+        Ok((
+            Bezier {
+                points: to_points(left),
+            },
+            Bezier {
+                points: to_points(right),
+            },
+        ))
+    }
+
+    /// The axis-aligned bounding box of the control points, `(min, max)`. By
+    /// the convex hull property it contains the whole curve.
+    pub fn bounds(&self) -> (Point<f64, D>, Point<f64, D>) {
+        point_bounds(&self.points)
+    }
+
+    /// Adaptive flattening: samples (with derivatives) such that the polyline
+    /// through them is within `tolerance` of the curve, with the bound it
+    /// guarantees. See [`Flattening`] for how the bound is obtained.
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] for a tolerance that is not finite and
+    /// positive; [`Error::ToleranceTooSmall`] below `1e-10 ×` the largest
+    /// control-point coordinate (double precision cannot certify less).
+    pub fn flatten(&self, tolerance: f64) -> Result<Flattening<D>, Error> {
+        flatten_pieces(
+            self,
+            std::iter::once((&self.points[..], (0.0, 1.0))),
+            tolerance,
+        )
+    }
+}
+
+impl<const D: usize> Curve<D> for Bezier<D> {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+
+    #[inline]
+    fn eval(&self, t: f64) -> Point<f64, D> {
+        let t = clamp_to_domain(t, (0.0, 1.0));
+        let n = self.points.len();
+        with_scratch(n, SVector::zeros(), |s| {
+            for (dst, p) in s.iter_mut().zip(&self.points) {
+                *dst = p.coords;
+            }
+            Point::from(de_casteljau(s, t).unwrap_or_else(SVector::zeros))
+        })
+    }
+
+    #[inline]
+    fn derivative(&self, t: f64) -> SVector<f64, D> {
+        self.eval_with_derivative(t).1
+    }
+
+    #[inline]
+    fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
+        let t = clamp_to_domain(t, (0.0, 1.0));
+        let n = self.points.len();
+        with_scratch(n, SVector::zeros(), |s| {
+            for (dst, p) in s.iter_mut().zip(&self.points) {
+                *dst = p.coords;
+            }
+            let (p, d) = de_casteljau_with_derivative(s, t)
+                .unwrap_or_else(|| (SVector::zeros(), SVector::zeros()));
+            (Point::from(p), d)
+        })
+    }
+}

@@ -1,0 +1,640 @@
+//! B-spline curves: knot validation, span search, de Boor evaluation, the
+//! Cox–de Boor basis, derivative splines, knot insertion and Bézier spans.
+//!
+//! Notation (Piegl & Tiller, *The NURBS Book*, ch. 2–5): degree `p`, control
+//! points `P₀ … P_{n−1}` (`n` of them), knots `t₀ ≤ … ≤ t_{n+p}` (`n + p + 1` of
+//! them). The curve `C(t) = Σᵢ Nᵢ,ₚ(t) Pᵢ` is defined on the domain
+//! `[t_p, t_n]`, where the basis functions sum to one.
+
+use super::flatten::{Flattening, flatten_pieces};
+use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
+use crate::bernstein::lerp;
+use crate::scratch::with_scratch;
+use crate::{Bezier, Curve, Error};
+use nalgebra::{Point, SVector};
+
+/// A B-spline curve of any degree in `D` dimensions.
+///
+/// Evaluation finds the knot span by binary search and runs de Boor's
+/// algorithm on the `p + 1` control points of that span, on stack scratch
+/// space (no heap allocation up to degree 16).
+///
+/// # Edge rules
+/// - Spans are half-open, `[tᵢ, tᵢ₊₁)`, so at an interior knot of full
+///   multiplicity (`p + 1`, where the curve may jump) the value is the limit
+///   from the right. The end of the domain `t_n` belongs to the last non-empty
+///   span, so it evaluates the end point, not zero.
+/// - Parameters outside the domain evaluate at the nearest end of the domain
+///   (no extrapolation); NaN evaluates at the start. Evaluation never returns
+///   NaN.
+///
+/// ```
+/// use revolve::{BSpline, Curve};
+/// use revolve::nalgebra::Point2;
+///
+/// let pts = vec![Point2::new(0.0, 0.0), Point2::new(1.0, 2.0), Point2::new(3.0, 2.0), Point2::new(4.0, 0.0)];
+/// // The course framework's convention: knots i/(n + k), drawn over [t_k, t_n].
+/// let uniform = BSpline::uniform(3, pts.clone())?;
+/// assert_eq!(uniform.domain(), (3.0 / 7.0, 4.0 / 7.0));
+/// // A clamped cubic on four points is the Bézier curve of those points.
+/// let clamped = BSpline::clamped(3, pts)?;
+/// assert_eq!(clamped.eval(1.0), Point2::new(4.0, 0.0));
+/// # Ok::<(), revolve::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct BSpline<const D: usize> {
+    degree: usize,
+    knots: Vec<f64>,
+    points: Vec<Point<f64, D>>,
+}
+
+/// One polynomial piece of a B-spline as a Bézier curve: on the knot interval
+/// `knots = (a, b)` the spline equals `curve((t − a)/(b − a))`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BezierSpan<const D: usize> {
+    /// The knot interval `(a, b)` the piece covers, `a < b`.
+    pub knots: (f64, f64),
+    /// The piece as a Bézier curve over `[0, 1]`, of the spline's degree.
+    pub curve: Bezier<D>,
+}
+
+impl<const D: usize> BSpline<D> {
+    /// A B-spline of the given degree, knot vector and control points.
+    ///
+    /// # Errors
+    /// In the order checked: [`Error::NoControlPoints`],
+    /// [`Error::NonFinitePoint`], [`Error::DegreeTooHigh`] (fewer than
+    /// `degree + 1` points), [`Error::KnotCount`] (not `points + degree + 1`
+    /// knots), [`Error::NonFiniteKnot`], [`Error::DecreasingKnots`],
+    /// [`Error::KnotMultiplicity`] (a knot repeated more than `degree + 1`
+    /// times), [`Error::EmptyDomain`] (`t_p = t_n`).
+    pub fn new(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
+        validate_points(&points)?;
+        let n = points.len();
+        if n <= degree {
+            return Err(Error::DegreeTooHigh { degree, points: n });
+        }
+        let expected = n + degree + 1;
+        if knots.len() != expected {
+            return Err(Error::KnotCount {
+                expected,
+                found: knots.len(),
+            });
+        }
+        if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(Error::NonFiniteKnot { index });
+        }
+        if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
+            return Err(Error::DecreasingKnots { index });
+        }
+        for run in knots.chunk_by(|a, b| a == b) {
+            if run.len() > degree + 1 {
+                return Err(Error::KnotMultiplicity {
+                    knot: run[0],
+                    multiplicity: run.len(),
+                    max: degree + 1,
+                });
+            }
+        }
+        let (start, end) = (knots[degree], knots[n]);
+        if start >= end {
+            return Err(Error::EmptyDomain { start, end });
+        }
+        Ok(Self {
+            degree,
+            knots,
+            points,
+        })
+    }
+
+    /// The course framework's uniform B-spline: knots `tᵢ = i/(n + k)`,
+    /// `i = 0 … n + k`, for `n` points and degree `k`; domain `[t_k, t_n]`.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new); in particular [`Error::DegreeTooHigh`] when
+    /// `degree ≥ points.len()`.
+    pub fn uniform(degree: usize, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
+        validate_points(&points)?;
+        check_degree(degree, points.len())?;
+        let last = (points.len() + degree) as f64;
+        let knots = (0..=points.len() + degree)
+            .map(|i| i as f64 / last)
+            .collect();
+        Self::new(degree, knots, points)
+    }
+
+    /// The clamped (open uniform) B-spline: `degree + 1` knots at 0 and at 1
+    /// and uniform interior knots, so the curve starts at the first control
+    /// point and ends at the last; domain `[0, 1]`.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new); in particular [`Error::DegreeTooHigh`] when
+    /// `degree ≥ points.len()`.
+    pub fn clamped(degree: usize, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
+        validate_points(&points)?;
+        check_degree(degree, points.len())?;
+        let spans = points.len() - degree;
+        let knots = (0..=points.len() + degree)
+            .map(|i| match i {
+                i if i <= degree => 0.0,
+                i if i >= points.len() => 1.0,
+                i => (i - degree) as f64 / spans as f64,
+            })
+            .collect();
+        Self::new(degree, knots, points)
+    }
+
+    /// The degree `p`.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The knot vector (`points + degree + 1` non-decreasing values).
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The control points.
+    pub fn points(&self) -> &[Point<f64, D>] {
+        &self.points
+    }
+
+    /// The axis-aligned bounding box of the control points, `(min, max)`,
+    /// which contains the curve (convex hull property).
+    pub fn bounds(&self) -> (Point<f64, D>, Point<f64, D>) {
+        point_bounds(&self.points)
+    }
+
+    /// The index `i` of the knot span `[tᵢ, tᵢ₊₁)` containing `t`, with
+    /// `p ≤ i < n` and `tᵢ < tᵢ₊₁`, found by binary search. `t` is first moved
+    /// into the domain; the domain end belongs to the last non-empty span.
+    pub fn span(&self, t: f64) -> usize {
+        let t = clamp_to_domain(t, self.domain());
+        self.span_of_clamped(t)
+    }
+
+    #[inline]
+    fn span_of_clamped(&self, t: f64) -> usize {
+        let p = self.degree;
+        let n = self.points.len();
+        let mut i = p + self.knots[p + 1..n].partition_point(|&k| k <= t);
+        // Only at the end of the domain can the span found be empty.
+        while i > p && self.knots[i] >= self.knots[i + 1] {
+            i -= 1;
+        }
+        i
+    }
+
+    /// The `order`-th derivative `dᵏC/dtᵏ` at `t` (order 0 is the point as a
+    /// vector); zero for orders above the degree.
+    ///
+    /// Differences the span's control points `order` times with the knot
+    /// spacing (the control points of the derivative spline, Piegl & Tiller
+    /// eq. 3.8) and runs de Boor at degree `p − order`. No heap allocation up
+    /// to degree 16.
+    pub fn nth_derivative(&self, t: f64, order: usize) -> SVector<f64, D> {
+        let p = self.degree;
+        if order > p {
+            return SVector::zeros();
+        }
+        let t = clamp_to_domain(t, self.domain());
+        let span = self.span_of_clamped(t);
+        let knots = &self.knots;
+        with_scratch(p + 1, SVector::zeros(), |s| {
+            self.load_span(span, s);
+            for r in 1..=order {
+                let scale = (p - r + 1) as f64;
+                for j in 0..=(p - r) {
+                    // Control point span − p + j of the r-th derivative spline.
+                    let den = knots[span + j + 1] - knots[span - p + j + r];
+                    s[j] = (s[j + 1] - s[j]) * (scale / den);
+                }
+            }
+            let q = p - order;
+            de_boor_levels(knots, q, span, &mut s[..=q], t, q);
+            s[q]
+        })
+    }
+
+    /// Copies the `p + 1` control points that act on `span` into `s`.
+    #[inline(always)]
+    fn load_span(&self, span: usize, s: &mut [SVector<f64, D>]) {
+        let first = span - self.degree;
+        for (dst, p) in s.iter_mut().zip(&self.points[first..=span]) {
+            *dst = p.coords;
+        }
+    }
+
+    /// Writes the values `N_{i−p+r, p}(t)`, `r = 0 … p`, of the `p + 1` basis
+    /// functions that can be nonzero at `t` into `out[..=p]` and returns the
+    /// index `i − p` of the first. All other basis functions are zero at `t`.
+    ///
+    /// Cox–de Boor recurrence in its triangular, division-safe form (Piegl &
+    /// Tiller, A2.2); no allocation up to degree 16. `t` is moved into the
+    /// domain first.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] if `out` has fewer than `p + 1` entries.
+    pub fn basis_functions(&self, t: f64, out: &mut [f64]) -> Result<usize, Error> {
+        let p = self.degree;
+        check_buffer(out.len(), p + 1)?;
+        let t = clamp_to_domain(t, self.domain());
+        let span = self.span_of_clamped(t);
+        with_scratch(2 * (p + 1), 0.0, |lr| {
+            let (left, right) = lr.split_at_mut(p + 1);
+            basis_up_to(&self.knots, span, t, p, &mut out[..=p], left, right);
+        });
+        Ok(span - p)
+    }
+
+    /// Derivatives of the basis functions: writes `dᵏ/dtᵏ N_{i−p+r, p}(t)` to
+    /// `out[k·(p + 1) + r]` for `k = 0 … order`, `r = 0 … p`, and returns the
+    /// index `i − p` of the first function. Orders above `p` are zero.
+    ///
+    /// Uses `N⁽ᵏ⁾_{j,p} = p!/(p−k)! Σₘ a_{k,m} N_{j+m, p−k}` with the recursively
+    /// defined coefficients `a_{k,m}` of Piegl & Tiller eq. 2.10 (a zero knot
+    /// difference contributes zero). No allocation up to degree 16.
+    ///
+    /// # Errors
+    /// [`Error::BufferLength`] if `out` has fewer than `(order + 1)(p + 1)`
+    /// entries.
+    pub fn basis_derivatives(&self, t: f64, order: usize, out: &mut [f64]) -> Result<usize, Error> {
+        let p = self.degree;
+        let width = p + 1;
+        let needed = (order.saturating_add(1)).saturating_mul(width);
+        check_buffer(out.len(), needed)?;
+        let t = clamp_to_domain(t, self.domain());
+        let span = self.span_of_clamped(t);
+        let knots = &self.knots;
+        out[..needed].fill(0.0);
+        // Scratch: lower-degree basis row, left/right differences, two rows of a.
+        with_scratch(5 * width, 0.0, |buf| {
+            let (lower, rest) = buf.split_at_mut(width);
+            let (left, rest) = rest.split_at_mut(width);
+            let (right, rest) = rest.split_at_mut(width);
+            let (a_prev, a_next) = rest.split_at_mut(width);
+            for k in 0..=order.min(p) {
+                let q = p - k;
+                basis_up_to(knots, span, t, q, &mut lower[..=q], left, right);
+                let falling: f64 = (q + 1..=p).map(|x| x as f64).product();
+                for r in 0..=p {
+                    let j = span - p + r; // global index of the basis function
+                    // a_{k,·} for N_{j,p}, built from a_{0,0} = 1.
+                    a_prev[0] = 1.0;
+                    for kk in 1..=k {
+                        let qq = p - kk;
+                        for m in 0..=kk {
+                            let prev_m = if m < kk { a_prev[m] } else { 0.0 };
+                            let prev_m1 = if m > 0 { a_prev[m - 1] } else { 0.0 };
+                            let den = knots[j + qq + m + 1] - knots[j + m];
+                            a_next[m] = safe_div(prev_m - prev_m1, den);
+                        }
+                        a_prev[..=kk].copy_from_slice(&a_next[..=kk]);
+                    }
+                    let mut sum = 0.0;
+                    for (m, &a) in a_prev.iter().enumerate().take(k + 1) {
+                        // N_{j+m, q} is stored at lower[(j + m) − (span − q)] when in range.
+                        let idx = (j + m + q).checked_sub(span);
+                        if let Some(idx) = idx.filter(|&i| i <= q) {
+                            sum += a * lower[idx];
+                        }
+                    }
+                    out[k * width + r] = falling * sum;
+                }
+            }
+        });
+        Ok(span - p)
+    }
+
+    /// The derivative curve `C′(t)` as a B-spline of degree `p − 1` on the
+    /// knots `t₁ … t_{n+p−1}` with control points
+    /// `Qᵢ = p·(Pᵢ₊₁ − Pᵢ)/(tᵢ₊ₚ₊₁ − tᵢ₊₁)` (Piegl & Tiller eq. 3.8; a zero knot
+    /// difference, where the basis function vanishes, gives `Qᵢ = 0`). Same
+    /// domain. For degree 0 the derivative is the zero spline on the same knots.
+    pub fn derivative_spline(&self) -> BSpline<D> {
+        let p = self.degree;
+        if p == 0 {
+            return BSpline {
+                degree: 0,
+                knots: self.knots.clone(),
+                points: vec![Point::origin(); self.points.len()],
+            };
+        }
+        let points = (0..self.points.len() - 1)
+            .map(|i| {
+                let den = self.knots[i + p + 1] - self.knots[i + 1];
+                let diff = self.points[i + 1] - self.points[i];
+                Point::from(if den > 0.0 {
+                    diff * (p as f64 / den)
+                } else {
+                    SVector::zeros()
+                })
+            })
+            .collect();
+        BSpline {
+            degree: p - 1,
+            knots: self.knots[1..self.knots.len() - 1].to_vec(),
+            points,
+        }
+    }
+
+    /// The `order`-th derivative spline (order 0 is a copy of the curve).
+    pub fn nth_derivative_spline(&self, order: usize) -> BSpline<D> {
+        (0..order).fold(self.clone(), |c, _| c.derivative_spline())
+    }
+
+    /// Inserts the knot `t` `times` times (Boehm's algorithm); the curve is
+    /// unchanged, it gains `times` control points.
+    ///
+    /// # Errors
+    /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside the domain;
+    /// [`Error::KnotMultiplicity`] if `t` would then occur more than
+    /// `degree + 1` times.
+    pub fn insert_knot(&self, t: f64, times: usize) -> Result<BSpline<D>, Error> {
+        check_in_domain(t, self.domain())?;
+        let existing = self.knots.iter().filter(|&&k| k == t).count();
+        let multiplicity = existing.saturating_add(times);
+        if multiplicity > self.degree + 1 {
+            return Err(Error::KnotMultiplicity {
+                knot: t,
+                multiplicity,
+                max: self.degree + 1,
+            });
+        }
+        let mut curve = self.clone();
+        for _ in 0..times {
+            curve = curve.insert_once(t);
+        }
+        Ok(curve)
+    }
+
+    /// One Boehm insertion: in span `k` (`t_k ≤ t ≤ t_{k+1}`) the new points are
+    /// `Qⱼ = (1 − αⱼ)Pⱼ₋₁ + αⱼPⱼ`, `αⱼ = (t − tⱼ)/(tⱼ₊ₚ − tⱼ)`, `k − p < j ≤ k`.
+    fn insert_once(&self, t: f64) -> BSpline<D> {
+        let p = self.degree;
+        let k = self.span_of_clamped(t);
+        let mut points = Vec::with_capacity(self.points.len() + 1);
+        points.extend_from_slice(&self.points[..=k - p]);
+        for j in (k - p + 1)..=k {
+            let alpha = (t - self.knots[j]) / (self.knots[j + p] - self.knots[j]);
+            points.push(Point::from(lerp(
+                self.points[j - 1].coords,
+                self.points[j].coords,
+                alpha,
+            )));
+        }
+        points.extend_from_slice(&self.points[k..]);
+        let mut knots = Vec::with_capacity(self.knots.len() + 1);
+        knots.extend_from_slice(&self.knots[..=k]);
+        knots.push(t);
+        knots.extend_from_slice(&self.knots[k + 1..]);
+        BSpline {
+            degree: p,
+            knots,
+            points,
+        }
+    }
+
+    /// The polynomial pieces of the curve as Bézier curves, one per non-empty
+    /// knot span of the domain, in parameter order.
+    ///
+    /// The control points of the piece on `[a, b]` are the blossom values
+    /// `bᵣ = f(a, …, a, b, …, b)` (`p − r` times `a`, `r` times `b`), computed
+    /// by de Boor's algorithm with a different argument at each level
+    /// (Ramshaw's blossoming principle).
+    pub fn to_bezier_spans(&self) -> Vec<BezierSpan<D>> {
+        let p = self.degree;
+        let n = self.points.len();
+        (p..n)
+            .filter(|&i| self.knots[i] < self.knots[i + 1])
+            .map(|span| {
+                let (a, b) = (self.knots[span], self.knots[span + 1]);
+                let points = (0..=p)
+                    .map(|r| Point::from(self.blossom_in_span(span, p - r, a, b)))
+                    .collect();
+                BezierSpan {
+                    knots: (a, b),
+                    curve: Bezier::from_valid_points(points),
+                }
+            })
+            .collect()
+    }
+
+    /// The blossom `f(a, …, a, b, …, b)` with `count_a` copies of `a` and the
+    /// rest `b`, for the polynomial of `span`.
+    fn blossom_in_span(&self, span: usize, count_a: usize, a: f64, b: f64) -> SVector<f64, D> {
+        let p = self.degree;
+        let knots = &self.knots;
+        with_scratch(p + 1, SVector::zeros(), |s| {
+            self.load_span(span, s);
+            for level in 1..=p {
+                let u = if level <= count_a { a } else { b };
+                de_boor_level(knots, p, span, s, u, level);
+            }
+            s[p]
+        })
+    }
+
+    /// Adaptive flattening of the whole curve (span by span) to `tolerance`,
+    /// with the guaranteed bound; see [`Flattening`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] for a tolerance that is not finite and
+    /// positive; [`Error::ToleranceTooSmall`] below `1e-10 ×` the largest
+    /// control-point coordinate.
+    pub fn flatten(&self, tolerance: f64) -> Result<Flattening<D>, Error> {
+        let spans = self.to_bezier_spans();
+        flatten_pieces(
+            self,
+            spans.iter().map(|s| (s.curve.points(), s.knots)),
+            tolerance,
+        )
+    }
+}
+
+impl<const D: usize> Curve<D> for BSpline<D> {
+    #[inline]
+    fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.points.len()])
+    }
+
+    #[inline]
+    fn eval(&self, t: f64) -> Point<f64, D> {
+        let p = self.degree;
+        let t = clamp_to_domain(t, self.domain());
+        let span = self.span_of_clamped(t);
+        with_scratch(p + 1, SVector::zeros(), |s| {
+            self.load_span(span, s);
+            de_boor_levels(&self.knots, p, span, s, t, p);
+            Point::from(s[p])
+        })
+    }
+
+    #[inline]
+    fn derivative(&self, t: f64) -> SVector<f64, D> {
+        self.eval_with_derivative(t).1
+    }
+
+    /// One de Boor pass: after `p − 1` levels the two remaining points
+    /// `d₀, d₁` give `C′(t) = p·(d₁ − d₀)/(tᵢ₊₁ − tᵢ)` and the last level gives
+    /// `C(t)`.
+    #[inline]
+    fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
+        let p = self.degree;
+        let t = clamp_to_domain(t, self.domain());
+        let span = self.span_of_clamped(t);
+        if p == 0 {
+            return (self.points[span], SVector::zeros());
+        }
+        let knots = &self.knots;
+        with_scratch(p + 1, SVector::zeros(), |s| {
+            self.load_span(span, s);
+            de_boor_levels(knots, p, span, s, t, p - 1);
+            let (t0, t1) = (knots[span], knots[span + 1]);
+            let derivative = (s[p] - s[p - 1]) * (p as f64 / (t1 - t0));
+            let point = lerp(s[p - 1], s[p], (t - t0) / (t1 - t0));
+            (Point::from(point), derivative)
+        })
+    }
+}
+
+/// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on
+/// `s[0..=q]`, which holds the coefficients with global indices
+/// `span − q … span`. After `q` levels `s[q]` is the value.
+#[inline(always)]
+fn de_boor_levels<T: crate::bernstein::Coefficient>(
+    knots: &[f64],
+    q: usize,
+    span: usize,
+    s: &mut [T],
+    t: f64,
+    levels: usize,
+) {
+    for level in 1..=levels {
+        de_boor_level(knots, q, span, s, t, level);
+    }
+}
+
+/// Level `level` of de Boor's algorithm at argument `u`: for local index
+/// `j = q … level` (global `l = span − q + j`),
+/// `sⱼ ← lerp(sⱼ₋₁, sⱼ, (u − t_l)/(t_{l+q+1−level} − t_l))`. The knot interval
+/// always contains the non-empty span, so the division is safe.
+#[inline(always)]
+fn de_boor_level<T: crate::bernstein::Coefficient>(
+    knots: &[f64],
+    q: usize,
+    span: usize,
+    s: &mut [T],
+    u: f64,
+    level: usize,
+) {
+    for j in (level..=q).rev() {
+        let l = span - q + j;
+        let lo = knots[l];
+        let hi = knots[l + q + 1 - level];
+        s[j] = lerp(s[j - 1], s[j], (u - lo) / (hi - lo));
+    }
+}
+
+/// The values `N_{span−q+r, q}(t)`, `r = 0 … q`, into `out[..=q]` by the
+/// triangular Cox–de Boor recurrence; `left`, `right` are scratch of length
+/// `≥ q + 1`.
+fn basis_up_to(
+    knots: &[f64],
+    span: usize,
+    t: f64,
+    q: usize,
+    out: &mut [f64],
+    left: &mut [f64],
+    right: &mut [f64],
+) {
+    out[0] = 1.0;
+    for j in 1..=q {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut carry = 0.0;
+        for r in 0..j {
+            // right[r + 1] + left[j − r] = t_{span+r+1} − t_{span+r+1−j} > 0.
+            let w = out[r] / (right[r + 1] + left[j - r]);
+            out[r] = carry + right[r + 1] * w;
+            carry = left[j - r] * w;
+        }
+        out[j] = carry;
+    }
+}
+
+/// `num / den`, or zero where the knot difference `den` vanishes (the basis
+/// function it belongs to is identically zero there).
+#[inline]
+fn safe_div(num: f64, den: f64) -> f64 {
+    if den > 0.0 { num / den } else { 0.0 }
+}
+
+fn check_degree(degree: usize, points: usize) -> Result<(), Error> {
+    if degree >= points {
+        Err(Error::DegreeTooHigh { degree, points })
+    } else {
+        Ok(())
+    }
+}
+
+fn check_buffer(found: usize, expected: usize) -> Result<(), Error> {
+    if found < expected {
+        Err(Error::BufferLength { expected, found })
+    } else {
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Point1;
+
+    fn spline(p: usize, knots: &[f64], n: usize) -> BSpline<1> {
+        let points = (0..n).map(|i| Point1::new(i as f64 * i as f64)).collect();
+        BSpline::new(p, knots.to_vec(), points).unwrap()
+    }
+
+    #[test]
+    fn uniform_cubic_basis_is_one_sixth_two_thirds_one_sixth() {
+        let c = spline(3, &[0., 1., 2., 3., 4., 5., 6., 7.], 4);
+        let mut out = [0.0; 4];
+        let first = c.basis_functions(3.0, &mut out).unwrap();
+        assert_eq!(first, 0);
+        let expect = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 0.0];
+        for (a, b) in out.iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15, "{out:?}");
+        }
+        let mut d = [0.0; 12];
+        c.basis_derivatives(3.0, 2, &mut d).unwrap();
+        let d1 = [-0.5, 0.0, 0.5, 0.0];
+        let d2 = [1.0, -2.0, 1.0, 0.0];
+        for r in 0..4 {
+            assert!((d[4 + r] - d1[r]).abs() < 1e-14, "{d:?}");
+            assert!((d[8 + r] - d2[r]).abs() < 1e-14, "{d:?}");
+        }
+    }
+
+    #[test]
+    fn domain_end_belongs_to_last_nonempty_span() {
+        // Degree 2, knots with a double knot at the domain end t_4 = 1.
+        let c = spline(2, &[0., 0., 0., 1., 1., 2., 2.], 4);
+        assert_eq!(c.domain(), (0.0, 1.0));
+        assert_eq!(c.span(1.0), 2);
+        // The end value is the limit from the left (P2 here), not zero.
+        assert!((c.eval(1.0).x - 4.0).abs() < 1e-14);
+        assert!((c.eval(1.0 - 1e-12).x - 4.0).abs() < 1e-10);
+    }
+
+    #[test]
+    fn span_search_skips_repeated_knots() {
+        let c = spline(2, &[0., 0., 0., 0.5, 0.5, 1., 1., 1.], 5);
+        assert_eq!(c.span(0.0), 2);
+        assert_eq!(c.span(0.49), 2);
+        assert_eq!(c.span(0.5), 4);
+        assert_eq!(c.span(1.0), 4);
+        assert_eq!(c.span(f64::NAN), 2);
+        assert_eq!(c.span(7.0), 4);
+    }
+}

@@ -1,0 +1,175 @@
+//! Adaptive flattening with a guaranteed deviation bound.
+//!
+//! A curve is cut into Bézier pieces by de Casteljau subdivision at parameter
+//! midpoints until each piece is certified flat. The certificate comes from
+//! the control polygon: a Bézier piece lies in the convex hull of its control
+//! points, and the distance to the chord `[P₀, Pₙ]` is a convex function, so
+//! its maximum over the hull is attained at a control point. Hence
+//!
+//! `dist(P(t), chord) ≤ maxᵢ dist(Pᵢ, [P₀, Pₙ])` for every `t` in the piece.
+//!
+//! The bound we compare against the tolerance is that maximum plus an allowance
+//! for the rounding of the subdivided control points
+//! (`2ε · scale · (n + 1) · (depth + 1)`), so it holds for the exact curve, not
+//! only for its floating-point subdivision.
+
+use super::CurveSample;
+use crate::bernstein::subdivide;
+use crate::scratch::with_scratch;
+use crate::{Curve, Error};
+use nalgebra::{Point, SVector};
+
+/// Deepest subdivision: pieces narrower than `2⁻⁵⁰` of a span are not split.
+const MAX_DEPTH: u32 = 50;
+
+/// Tolerances below this multiple of the largest control-point coordinate are
+/// rejected: rounding (about `1e-16` of the scale) would dominate the bound and
+/// the number of pieces would explode.
+const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
+
+/// The result of adaptive flattening: samples and the deviation bound achieved.
+///
+/// The samples are in parameter order. For consecutive samples `sᵢ`, `sᵢ₊₁`,
+/// every point of the curve with parameter in `[sᵢ.t, sᵢ₊₁.t]` lies within
+/// `bound` of the segment `[sᵢ.point, sᵢ₊₁.point]`; `bound ≤ tolerance`.
+///
+/// Where a B-spline jumps (an interior knot of full multiplicity), the sample
+/// list holds two samples with the same `t`: the limit from the left, then the
+/// value (right limit). The segment between them is the jump itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flattening<const D: usize> {
+    /// The samples, with points and derivatives, in parameter order.
+    pub samples: Vec<CurveSample<D>>,
+    /// The guaranteed deviation bound (≤ the requested tolerance).
+    pub bound: f64,
+}
+
+/// What one refinement pass accumulates.
+struct Accumulator<'c, C, const D: usize> {
+    curve: &'c C,
+    tolerance: f64,
+    scale: f64,
+    bound: f64,
+    samples: Vec<CurveSample<D>>,
+}
+
+/// Flattens `curve`, given as a sequence of Bézier pieces (control points and
+/// the parameter interval each covers), to `tolerance`.
+pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
+    curve: &C,
+    pieces: impl IntoIterator<Item = (&'a [Point<f64, D>], (f64, f64))>,
+    tolerance: f64,
+) -> Result<Flattening<D>, Error> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::InvalidTolerance { tolerance });
+    }
+    let pieces: Vec<_> = pieces.into_iter().collect();
+    let scale = pieces
+        .iter()
+        .flat_map(|(points, _)| points.iter())
+        .map(|p| p.coords.amax())
+        .fold(0.0, f64::max);
+    let min = MIN_RELATIVE_TOLERANCE * scale;
+    if tolerance < min {
+        return Err(Error::ToleranceTooSmall { tolerance, min });
+    }
+    let mut acc = Accumulator {
+        curve,
+        tolerance,
+        scale,
+        bound: 0.0,
+        samples: Vec::new(),
+    };
+    for (k, &(points, (a, b))) in pieces.iter().enumerate() {
+        let n = points.len();
+        with_scratch(n, SVector::zeros(), |c| {
+            for (dst, p) in c.iter_mut().zip(points) {
+                *dst = p.coords;
+            }
+            refine(&mut acc, c, a, b, 0)
+        })?;
+        let end = points[n - 1];
+        let next_start = pieces.get(k + 1).map(|(p, _)| p[0]);
+        if next_start.is_some_and(|s| (s - end).norm() > tolerance) {
+            // A jump: close this piece with its limit from the left.
+            let derivative = match n {
+                1 => SVector::zeros(),
+                _ => (end - points[n - 2]) * ((n - 1) as f64 / (b - a)),
+            };
+            acc.samples.push(CurveSample {
+                t: b,
+                point: end,
+                derivative,
+            });
+        }
+    }
+    let t_end = curve.domain().1;
+    let (point, derivative) = curve.eval_with_derivative(t_end);
+    acc.samples.push(CurveSample {
+        t: t_end,
+        point,
+        derivative,
+    });
+    Ok(Flattening {
+        samples: acc.samples,
+        bound: acc.bound,
+    })
+}
+
+/// Certifies the piece `c` (covering `[a, b]`) or splits it at its midpoint.
+/// Pushes the start sample of every certified piece.
+fn refine<C: Curve<D>, const D: usize>(
+    acc: &mut Accumulator<'_, C, D>,
+    c: &[SVector<f64, D>],
+    a: f64,
+    b: f64,
+    depth: u32,
+) -> Result<(), Error> {
+    let n = c.len();
+    let rounding = 2.0 * f64::EPSILON * acc.scale * n as f64 * f64::from(depth + 1);
+    let bound = hull_to_chord_distance(c) + rounding;
+    if bound <= acc.tolerance {
+        acc.bound = acc.bound.max(bound);
+        let (point, derivative) = acc.curve.eval_with_derivative(a);
+        acc.samples.push(CurveSample {
+            t: a,
+            point,
+            derivative,
+        });
+        return Ok(());
+    }
+    if depth >= MAX_DEPTH {
+        return Err(Error::ToleranceTooSmall {
+            tolerance: acc.tolerance,
+            min: bound,
+        });
+    }
+    let mid = 0.5 * (a + b);
+    with_scratch(n, SVector::zeros(), |left| {
+        with_scratch(n, SVector::zeros(), |right| {
+            subdivide(c, 0.5, left, right);
+            refine(acc, left, a, mid, depth + 1)?;
+            refine(acc, right, mid, b, depth + 1)
+        })
+    })
+}
+
+/// `maxᵢ dist(cᵢ, [c₀, cₙ])`: how far the control polygon strays from the chord.
+fn hull_to_chord_distance<const D: usize>(c: &[SVector<f64, D>]) -> f64 {
+    let (Some(&first), Some(&last)) = (c.first(), c.last()) else {
+        return 0.0;
+    };
+    let chord = last - first;
+    let len2 = chord.norm_squared();
+    c.iter()
+        .map(|&p| {
+            let w = p - first;
+            let s = if len2 > 0.0 {
+                (w.dot(&chord) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (w - chord * s).norm()
+        })
+        .fold(0.0, f64::max)
+}

@@ -1,0 +1,145 @@
+//! Parametric curves: the [`Curve`] trait, its samples, and the curve types.
+//!
+//! A curve is a map `t ↦ P(t) ∈ ℝᴰ` on a closed parameter interval, its
+//! [domain](Curve::domain). The trait asks for three methods (domain, point,
+//! first derivative) so that users can implement it for their own curves and
+//! use everything built on it (uniform sampling here, surfaces of revolution
+//! elsewhere in the crate).
+//!
+//! ```
+//! use revolve::{Bezier, Curve};
+//! use revolve::nalgebra::Point2;
+//!
+//! let quarter = Bezier::new(vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0), Point2::new(0.0, 1.0)])?;
+//! let samples = quarter.discretize(4);
+//! assert_eq!(samples.len(), 5);
+//! assert_eq!(samples[0].point, Point2::new(1.0, 0.0));
+//! assert_eq!(samples[4].point, Point2::new(0.0, 1.0));
+//! // The derivative at the start points along the first leg of the control polygon.
+//! assert_eq!(samples[0].derivative, revolve::nalgebra::Vector2::new(0.0, 2.0));
+//! # Ok::<(), revolve::Error>(())
+//! ```
+
+mod bezier;
+mod bspline;
+mod flatten;
+
+pub use bezier::Bezier;
+pub use bspline::{BSpline, BezierSpan};
+pub use flatten::Flattening;
+
+use crate::Error;
+use nalgebra::{Point, SVector};
+
+/// A parametric curve in `D` dimensions.
+///
+/// Implementors provide the domain, the point and the first derivative; the
+/// other methods have default implementations in terms of those.
+///
+/// # Contract
+/// - `domain()` returns `(a, b)` with `a < b`, both finite.
+/// - `eval` and `derivative` accept any `f64`. The crate's own curves evaluate
+///   a parameter outside the domain at the nearest end of the domain, and a NaN
+///   parameter at the start of the domain, so that they never return NaN;
+///   users' curves should do the same.
+pub trait Curve<const D: usize> {
+    /// The parameter interval `(a, b)` on which the curve is defined.
+    fn domain(&self) -> (f64, f64);
+
+    /// The point `P(t)`.
+    fn eval(&self, t: f64) -> Point<f64, D>;
+
+    /// The first derivative `dP/dt`.
+    fn derivative(&self, t: f64) -> SVector<f64, D>;
+
+    /// The point and the first derivative together. The crate's curves compute
+    /// both in one pass; the default calls [`eval`](Curve::eval) and
+    /// [`derivative`](Curve::derivative).
+    fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
+        (self.eval(t), self.derivative(t))
+    }
+
+    /// `segments + 1` samples at uniformly spaced parameters
+    /// `tᵢ = a + (b − a)·i/segments`, `i = 0 … segments`, each with its point and
+    /// first derivative. The first and last parameters are exactly `a` and `b`.
+    ///
+    /// `segments == 0` is treated as `1` (the two end points), so the result
+    /// always spans the whole curve.
+    fn discretize(&self, segments: usize) -> Vec<CurveSample<D>> {
+        let segments = segments.max(1);
+        let (a, b) = self.domain();
+        (0..=segments)
+            .map(|i| {
+                let s = i as f64 / segments as f64;
+                let t = if i == segments {
+                    b
+                } else {
+                    a * (1.0 - s) + b * s
+                };
+                let (point, derivative) = self.eval_with_derivative(t);
+                CurveSample {
+                    t,
+                    point,
+                    derivative,
+                }
+            })
+            .collect()
+    }
+}
+
+/// One sample of a curve: the parameter, the point and the first derivative.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveSample<const D: usize> {
+    /// The curve parameter.
+    pub t: f64,
+    /// The point `P(t)`.
+    pub point: Point<f64, D>,
+    /// The derivative `dP/dt` at `t`.
+    pub derivative: SVector<f64, D>,
+}
+
+/// Checks that there is at least one control point and that every coordinate
+/// is finite.
+pub(crate) fn validate_points<const D: usize>(points: &[Point<f64, D>]) -> Result<(), Error> {
+    if points.is_empty() {
+        return Err(Error::NoControlPoints);
+    }
+    match points
+        .iter()
+        .position(|p| p.coords.iter().any(|c| !c.is_finite()))
+    {
+        Some(index) => Err(Error::NonFinitePoint { index }),
+        None => Ok(()),
+    }
+}
+
+/// The parameter moved into `[a, b]`: clamped, and NaN mapped to `a`.
+#[inline(always)]
+pub(crate) fn clamp_to_domain(t: f64, (a, b): (f64, f64)) -> f64 {
+    if t >= a {
+        if t <= b { t } else { b }
+    } else {
+        // Below the domain, or NaN.
+        a
+    }
+}
+
+/// Checks that `t` is a number inside `[a, b]`.
+pub(crate) fn check_in_domain(t: f64, domain: (f64, f64)) -> Result<(), Error> {
+    if t >= domain.0 && t <= domain.1 {
+        Ok(())
+    } else {
+        Err(Error::ParameterOutOfDomain { t, domain })
+    }
+}
+
+/// The axis-aligned box of a set of points, as (min corner, max corner).
+pub(crate) fn point_bounds<const D: usize>(
+    points: &[Point<f64, D>],
+) -> (Point<f64, D>, Point<f64, D>) {
+    let first = points.first().map_or_else(SVector::zeros, |p| p.coords);
+    let (lo, hi) = points.iter().fold((first, first), |(lo, hi), p| {
+        (lo.inf(&p.coords), hi.sup(&p.coords))
+    });
+    (Point::from(lo), Point::from(hi))
+}

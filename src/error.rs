@@ -1,0 +1,148 @@
+//! The crate's error type: every bad input is reported as a value, never a panic.
+
+use std::fmt;
+
+/// What was wrong with an input.
+///
+/// Every constructor and fallible operation of the crate returns `Err(Error::…)`
+/// for bad input instead of panicking or producing NaN. Each variant carries the
+/// values needed to find the problem (an index, the offending number, the limit).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A curve needs at least one control point.
+    NoControlPoints,
+    /// A control point has a NaN or infinite coordinate.
+    NonFinitePoint {
+        /// Index of the control point.
+        index: usize,
+    },
+    /// A knot is NaN or infinite.
+    NonFiniteKnot {
+        /// Index of the knot.
+        index: usize,
+    },
+    /// The knot vector length is not `points + degree + 1`.
+    KnotCount {
+        /// The required number of knots.
+        expected: usize,
+        /// The number of knots given.
+        found: usize,
+    },
+    /// The knots are not non-decreasing: `knots[index] < knots[index - 1]`.
+    DecreasingKnots {
+        /// Index of the first knot that is smaller than its predecessor.
+        index: usize,
+    },
+    /// A knot value repeats more than `degree + 1` times.
+    KnotMultiplicity {
+        /// The repeated knot value.
+        knot: f64,
+        /// How often it occurs.
+        multiplicity: usize,
+        /// The largest multiplicity allowed (`degree + 1`).
+        max: usize,
+    },
+    /// The parameter domain has zero length (`start == end`).
+    EmptyDomain {
+        /// Start of the domain.
+        start: f64,
+        /// End of the domain.
+        end: f64,
+    },
+    /// The degree is too high for the number of control points (a B-spline of
+    /// degree `p` needs at least `p + 1` points).
+    DegreeTooHigh {
+        /// The requested degree.
+        degree: usize,
+        /// The number of control points given.
+        points: usize,
+    },
+    /// A parameter value is NaN or lies outside the interval where the operation
+    /// is defined.
+    ParameterOutOfDomain {
+        /// The parameter that was given.
+        t: f64,
+        /// The interval it must lie in (inclusive).
+        domain: (f64, f64),
+    },
+    /// An output buffer is too short.
+    BufferLength {
+        /// The number of entries needed.
+        expected: usize,
+        /// The number of entries given.
+        found: usize,
+    },
+    /// A tolerance is not a finite positive number.
+    InvalidTolerance {
+        /// The tolerance that was given.
+        tolerance: f64,
+    },
+    /// A tolerance is smaller than double precision can guarantee at the
+    /// object's scale.
+    ToleranceTooSmall {
+        /// The tolerance that was given.
+        tolerance: f64,
+        /// The smallest tolerance accepted for this object.
+        min: f64,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::NoControlPoints => {
+                write!(f, "a curve needs at least one control point, got none")
+            }
+            Error::NonFinitePoint { index } => {
+                write!(f, "control point {index} has a NaN or infinite coordinate")
+            }
+            Error::NonFiniteKnot { index } => write!(f, "knot {index} is NaN or infinite"),
+            Error::KnotCount { expected, found } => write!(
+                f,
+                "wrong knot count: expected {expected} (points + degree + 1), found {found}"
+            ),
+            Error::DecreasingKnots { index } => write!(
+                f,
+                "knots must be non-decreasing, but knot {index} is smaller than knot {}",
+                index.saturating_sub(1)
+            ),
+            Error::KnotMultiplicity {
+                knot,
+                multiplicity,
+                max,
+            } => write!(
+                f,
+                "knot {knot} occurs {multiplicity} times, more than degree + 1 = {max}"
+            ),
+            Error::EmptyDomain { start, end } => {
+                write!(f, "the parameter domain [{start}, {end}] is empty")
+            }
+            Error::DegreeTooHigh { degree, points } => write!(
+                f,
+                "degree {degree} needs at least {} control points, got {points}",
+                degree.saturating_add(1)
+            ),
+            Error::ParameterOutOfDomain { t, domain } => write!(
+                f,
+                "parameter {t} is outside the domain [{}, {}]",
+                domain.0, domain.1
+            ),
+            Error::BufferLength { expected, found } => write!(
+                f,
+                "output buffer too short: needs {expected} entries, has {found}"
+            ),
+            Error::InvalidTolerance { tolerance } => write!(
+                f,
+                "tolerance must be a finite positive number, got {tolerance}"
+            ),
+            Error::ToleranceTooSmall { tolerance, min } => write!(
+                f,
+                "tolerance {tolerance} is below what double precision can guarantee at this \
+                 scale; use at least {min}"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for Error {}

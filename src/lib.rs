@@ -1,0 +1,60 @@
+//! # revolve
+//!
+//! Spline curves and surfaces of revolution with exact, robust ray
+//! intersection.
+//!
+//! This release provides the curve layer:
+//!
+//! - [`Bezier`] curves of any degree and dimension, evaluated by de Casteljau's
+//!   algorithm, with derivatives of any order, subdivision and bounds;
+//! - [`BSpline`] curves of any degree and dimension (de Boor evaluation,
+//!   Cox–de Boor basis values and derivatives, derivative splines, knot
+//!   insertion, conversion to Bézier spans), including the course framework's
+//!   uniform knots and clamped knots;
+//! - the [`Curve`] trait they share, usable for your own curve types, with
+//!   uniform sampling ([`Curve::discretize`]) and adaptive flattening to a
+//!   guaranteed tolerance ([`Bezier::flatten`], [`BSpline::flatten`]);
+//! - the Bernstein-basis kernels in [`bernstein`].
+//!
+//! Bad input is an [`Error`] value, never a panic; evaluation never returns
+//! NaN (parameters are moved into the domain, see [`Curve`]). Evaluation does
+//! not allocate for degrees up to 16.
+//!
+//! ```
+//! use revolve::{BSpline, Bezier, Curve};
+//! use revolve::nalgebra::{Point2, Vector2};
+//!
+//! // A cubic Bézier and the clamped cubic B-spline on the same points are the same curve.
+//! let pts = vec![Point2::new(0.0, 0.0), Point2::new(1.0, 2.0), Point2::new(3.0, 2.0), Point2::new(4.0, 0.0)];
+//! let bezier = Bezier::new(pts.clone())?;
+//! let spline = BSpline::clamped(3, pts)?;
+//! for s in spline.discretize(8) {
+//!     assert!((s.point - bezier.eval(s.t)).norm() < 1e-14);
+//!     assert!((s.derivative - bezier.derivative(s.t)).norm() < 1e-13);
+//! }
+//! // Derivatives at the ends follow the control polygon: 3·(P1 − P0).
+//! assert_eq!(bezier.derivative(0.0), Vector2::new(3.0, 6.0));
+//!
+//! // Flattening certifies its deviation from the curve.
+//! let flat = bezier.flatten(1e-4)?;
+//! assert!(flat.bound <= 1e-4);
+//!
+//! // Bad input is an error that names the problem.
+//! let err = BSpline::<2>::uniform(4, vec![Point2::origin(); 3]).unwrap_err();
+//! assert_eq!(err.to_string(), "degree 4 needs at least 5 control points, got 3");
+//! # Ok::<(), revolve::Error>(())
+//! ```
+
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+#![warn(clippy::all, rust_2018_idioms)]
+
+pub use nalgebra;
+
+pub mod bernstein;
+pub mod curve;
+mod error;
+mod scratch;
+
+pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
+pub use error::Error;
