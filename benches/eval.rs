@@ -1,1 +1,293 @@
-fn main() {}
+//! Evaluation benches: points, first derivatives and higher derivatives of
+//! Bézier curves and B-splines, the evaluation algorithms side by side, and the
+//! Cox–de Boor basis.
+//!
+//! Every measured iteration is ONE evaluation at the next parameter of a
+//! precomputed table of 1024 pseudo-random parameters (cycled), so the median
+//! reads directly as time per evaluation, the B-spline span search sees a new
+//! span almost every call and the branch predictor cannot learn the sequence.
+//! Consecutive evaluations are independent, so the figure is a throughput
+//! (the CPU may overlap neighbouring calls), as in a sampling loop.
+//! `eval_overhead/t_lookup` measures the parameter lookup alone.
+//!
+//! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
+use revolve::nalgebra::{Point3, Vector3};
+use revolve::{BSpline, Bezier, Curve};
+
+/// Number of precomputed parameters; a power of two so that cycling is a mask.
+const N_T: usize = 1024;
+const MASK: usize = N_T - 1;
+
+/// Bézier degrees benchmarked.
+const DEGREES: [usize; 3] = [3, 7, 15];
+
+/// Control-point counts of the cubic B-splines benchmarked.
+const POINT_COUNTS: [usize; 3] = [10, 100, 1000];
+
+/// SplitMix64: a tiny deterministic generator, so runs are reproducible
+/// without a `rand` dependency.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)` (53 random bits).
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// `count` deterministic control points: a wobbly helix-like walk with
+/// coordinates of order 1.
+fn points3(count: usize, seed: u64) -> Vec<Point3<f64>> {
+    let mut rng = SplitMix64(seed);
+    (0..count)
+        .map(|i| {
+            let s = i as f64 / count.max(2).saturating_sub(1) as f64;
+            Point3::new(
+                (6.0 * s).cos() + rng.range(-0.3, 0.3),
+                (6.0 * s).sin() + rng.range(-0.3, 0.3),
+                2.0 * s - 1.0 + rng.range(-0.1, 0.1),
+            )
+        })
+        .collect()
+}
+
+/// 1024 pseudo-random parameters in `[a, b)`.
+fn parameters((a, b): (f64, f64), seed: u64) -> Box<[f64; N_T]> {
+    let mut rng = SplitMix64(seed);
+    let mut ts = Box::new([0.0; N_T]);
+    for t in ts.iter_mut() {
+        *t = rng.range(a, b);
+    }
+    ts
+}
+
+/// Cycles through a parameter table, one parameter per call.
+struct Cycle<'a> {
+    ts: &'a [f64; N_T],
+    i: usize,
+}
+
+impl<'a> Cycle<'a> {
+    fn new(ts: &'a [f64; N_T]) -> Self {
+        Self { ts, i: 0 }
+    }
+
+    #[inline(always)]
+    fn next(&mut self) -> f64 {
+        let t = self.ts[self.i & MASK];
+        self.i = self.i.wrapping_add(1);
+        black_box(t)
+    }
+}
+
+fn bezier_curve(degree: usize) -> Bezier<3> {
+    Bezier::new(points3(degree + 1, 0xB2 + degree as u64)).expect("valid control points")
+}
+
+fn cubic_bspline(points: usize) -> BSpline<3> {
+    BSpline::uniform(3, points3(points, 0x5B + points as u64)).expect("valid cubic B-spline")
+}
+
+/// Benches `f(curve, t)` as `group/label/param`, one parameter per iteration.
+fn bench_per_t<C, R>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: BenchmarkId,
+    curve: &C,
+    ts: &[f64; N_T],
+    f: impl Fn(&C, f64) -> R,
+) {
+    group.bench_function(id, |b| {
+        let curve = black_box(curve);
+        let mut cycle = Cycle::new(ts);
+        b.iter(|| f(curve, cycle.next()));
+    });
+}
+
+fn overhead(c: &mut Criterion) {
+    let ts = parameters((0.0, 1.0), 1);
+    let mut group = c.benchmark_group("eval_overhead");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("t_lookup", |b| {
+        let mut cycle = Cycle::new(&ts);
+        b.iter(|| cycle.next());
+    });
+    group.finish();
+}
+
+fn bezier(c: &mut Criterion) {
+    let ts = parameters((0.0, 1.0), 2);
+    let curves: Vec<_> = DEGREES.iter().map(|&d| (d, bezier_curve(d))).collect();
+
+    let mut group = c.benchmark_group("bezier_eval");
+    group.throughput(Throughput::Elements(1));
+    for (degree, curve) in &curves {
+        let id = BenchmarkId::new("degree", degree);
+        bench_per_t(&mut group, id, curve, &ts, |c, t| c.eval(t));
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("bezier_derivative");
+    group.throughput(Throughput::Elements(1));
+    for (degree, curve) in &curves {
+        let id = BenchmarkId::new("degree", degree);
+        bench_per_t(&mut group, id, curve, &ts, |c, t| c.derivative(t));
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("bezier_eval_with_derivative");
+    group.throughput(Throughput::Elements(1));
+    for (degree, curve) in &curves {
+        let id = BenchmarkId::new("degree", degree);
+        bench_per_t(&mut group, id, curve, &ts, |c, t| c.eval_with_derivative(t));
+    }
+    group.finish();
+
+    // Orders 1..3 of the cubic (order 3 is the constant third hodograph).
+    let cubic = &curves[0].1;
+    let mut group = c.benchmark_group("bezier_nth_derivative_cubic");
+    group.throughput(Throughput::Elements(1));
+    for order in 1..=3 {
+        let id = BenchmarkId::new("order", order);
+        bench_per_t(&mut group, id, cubic, &ts, move |c, t| {
+            c.nth_derivative(t, order)
+        });
+    }
+    group.finish();
+}
+
+fn bspline(c: &mut Criterion) {
+    let curves: Vec<_> = POINT_COUNTS
+        .iter()
+        .map(|&n| {
+            let curve = cubic_bspline(n);
+            let ts = parameters(curve.domain(), 3 + n as u64);
+            (n, curve, ts)
+        })
+        .collect();
+
+    let mut group = c.benchmark_group("bspline_eval");
+    group.throughput(Throughput::Elements(1));
+    for (n, curve, ts) in &curves {
+        let id = BenchmarkId::new("points", n);
+        bench_per_t(&mut group, id, curve, ts, |c, t| c.eval(t));
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("bspline_derivative");
+    group.throughput(Throughput::Elements(1));
+    for (n, curve, ts) in &curves {
+        let id = BenchmarkId::new("points", n);
+        bench_per_t(&mut group, id, curve, ts, |c, t| c.derivative(t));
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("bspline_eval_with_derivative");
+    group.throughput(Throughput::Elements(1));
+    for (n, curve, ts) in &curves {
+        let id = BenchmarkId::new("points", n);
+        bench_per_t(&mut group, id, curve, ts, |c, t| c.eval_with_derivative(t));
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("bspline_basis_functions");
+    group.throughput(Throughput::Elements(1));
+    for (n, curve, ts) in &curves {
+        let id = BenchmarkId::new("points", n);
+        group.bench_function(id, |b| {
+            let curve = black_box(curve);
+            let mut cycle = Cycle::new(ts);
+            let mut out = [0.0; 4];
+            b.iter(|| {
+                let first = curve.basis_functions(cycle.next(), &mut out);
+                black_box(&out);
+                first
+            });
+        });
+    }
+    group.finish();
+
+    // Orders 1..3 of the 100-point cubic.
+    let (_, curve, ts) = &curves[1];
+    let mut group = c.benchmark_group("bspline_nth_derivative_100_points");
+    group.throughput(Throughput::Elements(1));
+    for order in 1..=3 {
+        let id = BenchmarkId::new("order", order);
+        bench_per_t(&mut group, id, curve, ts, move |c, t| {
+            c.nth_derivative(t, order)
+        });
+    }
+    group.finish();
+}
+
+/// The same 3D Bernstein polynomial evaluated three ways: de Casteljau (the
+/// library's evaluator; on a copy, since it works in place), the term-by-term
+/// Bernstein sum, and Horner on power-basis coefficients converted once up
+/// front.
+fn algorithms(c: &mut Criterion) {
+    let ts = parameters((0.0, 1.0), 4);
+    let mut group = c.benchmark_group("bezier_algorithms");
+    group.throughput(Throughput::Elements(1));
+    for degree in DEGREES {
+        let coeffs: Vec<Vector3<f64>> = points3(degree + 1, 0xA1 + degree as u64)
+            .into_iter()
+            .map(|p| p.coords)
+            .collect();
+        let power = to_power_basis(&coeffs);
+
+        group.bench_function(BenchmarkId::new("de_casteljau", degree), |b| {
+            let coeffs = black_box(&coeffs[..]);
+            let mut scratch = [Vector3::zeros(); 16];
+            let mut cycle = Cycle::new(&ts);
+            b.iter(|| {
+                let s = &mut scratch[..coeffs.len()];
+                s.copy_from_slice(coeffs);
+                de_casteljau(s, cycle.next())
+            });
+        });
+        group.bench_function(BenchmarkId::new("bernstein_sum", degree), |b| {
+            let coeffs = black_box(&coeffs[..]);
+            let mut cycle = Cycle::new(&ts);
+            b.iter(|| bernstein_sum(coeffs, cycle.next()));
+        });
+        group.bench_function(BenchmarkId::new("horner", degree), |b| {
+            let power = black_box(&power[..]);
+            let mut cycle = Cycle::new(&ts);
+            b.iter(|| horner(power, cycle.next()));
+        });
+    }
+    group.finish();
+}
+
+fn config() -> Criterion {
+    // 37 benches; this keeps a full run around two and a half minutes.
+    Criterion::default()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(2))
+        .sample_size(50)
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = overhead, bezier, bspline, algorithms
+}
+criterion_main!(benches);

@@ -141,8 +141,8 @@ pub fn subdivide<T: Coefficient>(c: &[T], t: f64, left: &mut [T], right: &mut [T
     }
     let n = c.len() - 1;
     right.copy_from_slice(c);
-    for level in 0..n {
-        left[level] = right[0];
+    for (level, l) in left.iter_mut().enumerate().take(n) {
+        *l = right[0];
         for j in 0..(n - level) {
             right[j] = lerp(right[j], right[j + 1], t);
         }

@@ -58,3 +58,8 @@ mod scratch;
 
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
+
+/// The README's code blocks, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
