@@ -17,6 +17,15 @@ pub enum Error {
         /// Index of the control point.
         index: usize,
     },
+    /// A control-point coordinate is larger in magnitude than
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), beyond which differences
+    /// and derivatives could overflow.
+    CoordinateTooLarge {
+        /// Index of the control point.
+        index: usize,
+        /// The offending coordinate.
+        value: f64,
+    },
     /// A knot is NaN or infinite.
     NonFiniteKnot {
         /// Index of the knot.
@@ -28,6 +37,25 @@ pub enum Error {
         expected: usize,
         /// The number of knots given.
         found: usize,
+    },
+    /// A knot is larger in magnitude than
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    KnotTooLarge {
+        /// Index of the knot.
+        index: usize,
+        /// The offending knot.
+        value: f64,
+    },
+    /// Two distinct knots are closer than rounding can tell apart
+    /// (`0 < knots[index] − knots[index − 1] < min`): make them one repeated
+    /// knot or spread them.
+    KnotGapTooSmall {
+        /// Index of the upper knot of the gap.
+        index: usize,
+        /// The gap.
+        gap: f64,
+        /// The smallest non-zero gap accepted (`4ε ×` the knot range).
+        min: f64,
     },
     /// The knots are not non-decreasing: `knots[index] < knots[index - 1]`.
     DecreasingKnots {
@@ -97,7 +125,27 @@ impl fmt::Display for Error {
             Error::NonFinitePoint { index } => {
                 write!(f, "control point {index} has a NaN or infinite coordinate")
             }
+            Error::CoordinateTooLarge { index, value } => write!(
+                f,
+                "control point {index} has coordinate {}, beyond the supported magnitude {}",
+                Num(value),
+                Num(crate::MAX_COORDINATE)
+            ),
             Error::NonFiniteKnot { index } => write!(f, "knot {index} is NaN or infinite"),
+            Error::KnotTooLarge { index, value } => write!(
+                f,
+                "knot {index} is {}, beyond the supported magnitude {}",
+                Num(value),
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::KnotGapTooSmall { index, gap, min } => write!(
+                f,
+                "knots {} and {index} differ by {}, less than the smallest distinguishable gap {}; \
+                 make them one repeated knot or spread them",
+                index.saturating_sub(1),
+                Num(gap),
+                Num(min)
+            ),
             Error::KnotCount { expected, found } => write!(
                 f,
                 "wrong knot count: expected {expected} (points + degree + 1), found {found}"
@@ -113,10 +161,16 @@ impl fmt::Display for Error {
                 max,
             } => write!(
                 f,
-                "knot {knot} occurs {multiplicity} times, more than degree + 1 = {max}"
+                "knot {} occurs {multiplicity} times, more than degree + 1 = {max}",
+                Num(knot)
             ),
             Error::EmptyDomain { start, end } => {
-                write!(f, "the parameter domain [{start}, {end}] is empty")
+                write!(
+                    f,
+                    "the parameter domain [{}, {}] is empty",
+                    Num(start),
+                    Num(end)
+                )
             }
             Error::DegreeTooHigh { degree, points } => write!(
                 f,
@@ -125,8 +179,10 @@ impl fmt::Display for Error {
             ),
             Error::ParameterOutOfDomain { t, domain } => write!(
                 f,
-                "parameter {t} is outside the domain [{}, {}]",
-                domain.0, domain.1
+                "parameter {} is outside the domain [{}, {}]",
+                Num(t),
+                Num(domain.0),
+                Num(domain.1)
             ),
             Error::BufferLength { expected, found } => write!(
                 f,
@@ -134,15 +190,34 @@ impl fmt::Display for Error {
             ),
             Error::InvalidTolerance { tolerance } => write!(
                 f,
-                "tolerance must be a finite positive number, got {tolerance}"
+                "tolerance must be a finite positive number, got {}",
+                Num(tolerance)
             ),
             Error::ToleranceTooSmall { tolerance, min } => write!(
                 f,
-                "tolerance {tolerance} is below what double precision can guarantee at this \
-                 scale; use at least {min}"
+                "tolerance {} is below what double precision can guarantee at this \
+                 scale; use at least {}",
+                Num(tolerance),
+                Num(min)
             ),
         }
     }
 }
 
 impl std::error::Error for Error {}
+
+/// Formats a number readably: plain decimals for moderate magnitudes,
+/// scientific notation for very large or small ones (`1e-12`, not
+/// `0.000000000001`).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}

@@ -56,6 +56,12 @@ pub mod curve;
 mod error;
 mod scratch;
 
+/// The largest control-point coordinate or knot magnitude accepted (`1e100`).
+///
+/// Far beyond any geometry, and small enough that differences, hodographs and
+/// squared distances of accepted values cannot overflow.
+pub const MAX_COORDINATE: f64 = 1e100;
+
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
 

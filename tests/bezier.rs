@@ -395,9 +395,11 @@ fn flattened_parabola_stays_within_its_bound() {
     for tol in [1e-1, 1e-3, 1e-6] {
         let f = c.flatten(tol).unwrap();
         assert!(f.bound <= tol);
-        // The chord deviation of y = x² over a piece of width h is h²/4, so
-        // at least 1/(2√tol) pieces are needed.
-        assert!((f.samples.len() - 1) as f64 >= 0.5 / tol.sqrt(), "{tol}");
+        // Over a piece of width h the parabola (slope ≤ 2) is at least
+        // h²/(4√5) from its chord, and the bound cannot be below that, so at
+        // least 1/(2·5^¼·√tol) ≈ 0.334/√tol pieces are needed.
+        let pieces = (f.samples.len() - 1) as f64;
+        assert!(pieces >= 0.33 / tol.sqrt(), "{tol}: {pieces} pieces");
         for w in f.samples.windows(2) {
             let (a, b) = (w[0].point, w[1].point);
             for k in 0..=16 {
@@ -417,4 +419,33 @@ fn bezier_new_keeps_points_in_order() {
     let pts: Vec<_> = (0..5).map(|i| Point2::new(i as f64, -(i as f64))).collect();
     let c = Bezier::new(pts.clone()).unwrap();
     assert_eq!(c.points(), &pts[..]);
+}
+
+/// Flattening certifies a true bound up to the largest accepted coordinate
+/// (`MAX_COORDINATE = 1e100`); beyond it the constructor refuses the points,
+/// so squared chord lengths can never overflow (they did at 1e154 before the
+/// limit existed).
+#[test]
+fn flatten_bound_holds_for_huge_coordinates() {
+    assert!(matches!(
+        Bezier::new(vec![Point2::new(-1e154, 0.0), Point2::new(1e154, 0.0)]),
+        Err(revolve::Error::CoordinateTooLarge { index: 0, .. })
+    ));
+    let m = revolve::MAX_COORDINATE;
+    let c = Bezier::new(vec![
+        Point2::new(-m, 0.0),
+        Point2::new(0.0, m),
+        Point2::new(m, 0.0),
+    ])
+    .unwrap();
+    let f = c.flatten(1e-3 * m).unwrap();
+    for w in f.samples.windows(2) {
+        let mid = c.eval(0.5 * (w[0].t + w[1].t));
+        let (a, b) = (w[0].point / m, w[1].point / m);
+        let p = mid / m;
+        let ab = b - a;
+        let s = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+        let dist = (p - (a + ab * s)).norm() * m;
+        assert!(dist <= f.bound, "distance {dist:e} > bound {:e}", f.bound);
+    }
 }

@@ -63,11 +63,14 @@ impl<const D: usize> BSpline<D> {
     ///
     /// # Errors
     /// In the order checked: [`Error::NoControlPoints`],
-    /// [`Error::NonFinitePoint`], [`Error::DegreeTooHigh`] (fewer than
-    /// `degree + 1` points), [`Error::KnotCount`] (not `points + degree + 1`
-    /// knots), [`Error::NonFiniteKnot`], [`Error::DecreasingKnots`],
-    /// [`Error::KnotMultiplicity`] (a knot repeated more than `degree + 1`
-    /// times), [`Error::EmptyDomain`] (`t_p = t_n`).
+    /// [`Error::NonFinitePoint`] or [`Error::CoordinateTooLarge`] (beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE)), [`Error::DegreeTooHigh`]
+    /// (fewer than `degree + 1` points), [`Error::KnotCount`] (not
+    /// `points + degree + 1` knots), [`Error::NonFiniteKnot`] or
+    /// [`Error::KnotTooLarge`], [`Error::DecreasingKnots`],
+    /// [`Error::KnotGapTooSmall`] (distinct knots closer than `4ε ×` the knot
+    /// range, which rounding cannot tell apart), [`Error::KnotMultiplicity`]
+    /// (a knot repeated more than `degree + 1` times), [`Error::EmptyDomain`] (`t_p = t_n`).
     pub fn new(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
         let n = points.len();
@@ -81,11 +84,23 @@ impl<const D: usize> BSpline<D> {
                 found: knots.len(),
             });
         }
-        if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
-            return Err(Error::NonFiniteKnot { index });
+        for (index, &value) in knots.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(Error::NonFiniteKnot { index });
+            }
+            if value.abs() > crate::MAX_COORDINATE {
+                return Err(Error::KnotTooLarge { index, value });
+            }
         }
         if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
             return Err(Error::DecreasingKnots { index });
+        }
+        let min = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
+        for index in 1..knots.len() {
+            let gap = knots[index] - knots[index - 1];
+            if gap > 0.0 && gap < min {
+                return Err(Error::KnotGapTooSmall { index, gap, min });
+            }
         }
         for run in knots.chunk_by(|a, b| a == b) {
             if run.len() > degree + 1 {
@@ -207,7 +222,7 @@ impl<const D: usize> BSpline<D> {
                 for j in 0..=(p - r) {
                     // Control point span − p + j of the r-th derivative spline.
                     let den = knots[span + j + 1] - knots[span - p + j + r];
-                    s[j] = (s[j + 1] - s[j]) * (scale / den);
+                    s[j] = (s[j + 1] - s[j]) / den * scale;
                 }
             }
             let q = p - order;
@@ -308,9 +323,12 @@ impl<const D: usize> BSpline<D> {
 
     /// The derivative curve `C′(t)` as a B-spline of degree `p − 1` on the
     /// knots `t₁ … t_{n+p−1}` with control points
-    /// `Qᵢ = p·(Pᵢ₊₁ − Pᵢ)/(tᵢ₊ₚ₊₁ − tᵢ₊₁)` (Piegl & Tiller eq. 3.8; a zero knot
-    /// difference, where the basis function vanishes, gives `Qᵢ = 0`). Same
-    /// domain. For degree 0 the derivative is the zero spline on the same knots.
+    /// `Qᵢ = p·(Pᵢ₊₁ − Pᵢ)/(tᵢ₊ₚ₊₁ − tᵢ₊₁)` (Piegl & Tiller eq. 3.8). Same
+    /// domain. Where an interior knot has full multiplicity `p + 1` (a jump),
+    /// the basis function of `Qᵢ` vanishes identically (`tᵢ₊ₚ₊₁ = tᵢ₊₁`): that
+    /// `Qᵢ` and one copy of the knot are dropped, so the result again satisfies
+    /// the multiplicity rule of [`new`](Self::new). For degree 0 the
+    /// derivative is the zero spline on the same knots.
     pub fn derivative_spline(&self) -> BSpline<D> {
         let p = self.degree;
         if p == 0 {
@@ -320,27 +338,31 @@ impl<const D: usize> BSpline<D> {
                 points: vec![Point::origin(); self.points.len()],
             };
         }
-        let points = (0..self.points.len() - 1)
-            .map(|i| {
-                let den = self.knots[i + p + 1] - self.knots[i + 1];
+        let n = self.points.len();
+        let inner = &self.knots[1..self.knots.len() - 1];
+        let mut knots = Vec::with_capacity(inner.len());
+        let mut points = Vec::with_capacity(n - 1);
+        for i in 0..n - 1 {
+            // The basis function of Qᵢ lives on inner[i ..= i + p].
+            let den = self.knots[i + p + 1] - self.knots[i + 1];
+            if den > 0.0 {
                 let diff = self.points[i + 1] - self.points[i];
-                Point::from(if den > 0.0 {
-                    diff * (p as f64 / den)
-                } else {
-                    SVector::zeros()
-                })
-            })
-            .collect();
+                points.push(Point::from(diff / den * p as f64));
+                knots.push(inner[i]);
+            }
+        }
+        knots.extend_from_slice(&inner[n - 1..]);
         BSpline {
             degree: p - 1,
-            knots: self.knots[1..self.knots.len() - 1].to_vec(),
+            knots,
             points,
         }
     }
 
-    /// The `order`-th derivative spline (order 0 is a copy of the curve).
+    /// The `order`-th derivative spline (order 0 is a copy of the curve;
+    /// orders above the degree give the zero spline of degree 0).
     pub fn nth_derivative_spline(&self, order: usize) -> BSpline<D> {
-        (0..order).fold(self.clone(), |c, _| c.derivative_spline())
+        (0..order.min(self.degree + 1)).fold(self.clone(), |c, _| c.derivative_spline())
     }
 
     /// Inserts the knot `t` `times` times (Boehm's algorithm); the curve is
@@ -491,7 +513,7 @@ impl<const D: usize> Curve<D> for BSpline<D> {
             self.load_span(span, s);
             de_boor_levels(knots, p, span, s, t, p - 1);
             let (t0, t1) = (knots[span], knots[span + 1]);
-            let derivative = (s[p] - s[p - 1]) * (p as f64 / (t1 - t0));
+            let derivative = (s[p] - s[p - 1]) / (t1 - t0) * p as f64;
             let point = lerp(s[p - 1], s[p], (t - t0) / (t1 - t0));
             (Point::from(point), derivative)
         })

@@ -171,5 +171,10 @@ fn hull_to_chord_distance<const D: usize>(c: &[SVector<f64, D>]) -> f64 {
             };
             (w - chord * s).norm()
         })
-        .fold(0.0, f64::max)
+        // A NaN distance (impossible for accepted coordinates) must not be
+        // dropped by `max`: it makes the piece uncertifiable.
+        .fold(
+            0.0,
+            |m, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+        )
 }

@@ -99,18 +99,22 @@ pub struct CurveSample<const D: usize> {
 }
 
 /// Checks that there is at least one control point and that every coordinate
-/// is finite.
+/// is finite and at most [`MAX_COORDINATE`](crate::MAX_COORDINATE) in magnitude.
 pub(crate) fn validate_points<const D: usize>(points: &[Point<f64, D>]) -> Result<(), Error> {
     if points.is_empty() {
         return Err(Error::NoControlPoints);
     }
-    match points
-        .iter()
-        .position(|p| p.coords.iter().any(|c| !c.is_finite()))
-    {
-        Some(index) => Err(Error::NonFinitePoint { index }),
-        None => Ok(()),
+    for (index, p) in points.iter().enumerate() {
+        for &value in p.coords.iter() {
+            if !value.is_finite() {
+                return Err(Error::NonFinitePoint { index });
+            }
+            if value.abs() > crate::MAX_COORDINATE {
+                return Err(Error::CoordinateTooLarge { index, value });
+            }
+        }
     }
+    Ok(())
 }
 
 /// The parameter moved into `[a, b]`: clamped, and NaN mapped to `a`.
