@@ -23,6 +23,7 @@
 //! assert!((de_casteljau(&mut c, 0.5).unwrap() - 0.25).abs() < 1e-15);
 //! ```
 
+use crate::scratch::with_scratch;
 use std::ops::{Add, Mul, Sub};
 
 /// A Bernstein coefficient: a scalar or a vector that can be added, subtracted
@@ -112,6 +113,82 @@ pub fn de_casteljau_with_derivative<T: Coefficient>(c: &mut [T], t: f64) -> Opti
     }
     let (b0, b1) = (c[0], c[1]);
     Some((lerp(b0, b1, t), (b1 - b0) * n as f64))
+}
+
+/// De Casteljau on a fixed-size array: `N` is known at compile time, so the
+/// cascade is unrolled and stays in registers. Runs `levels` levels.
+#[inline(always)]
+fn cascade<T: Coefficient, const N: usize>(mut c: [T; N], t: f64, levels: usize) -> [T; N] {
+    for level in 1..=levels {
+        for j in 0..N - level {
+            c[j] = lerp(c[j], c[j + 1], t);
+        }
+    }
+    c
+}
+
+/// Dispatches a slice of known small length to a fixed-size kernel: lengths
+/// 1 to 17 (degree ≤ 16) get an unrolled cascade the compiler can keep in
+/// registers.
+macro_rules! fixed_sizes {
+    ($c:expr, $kernel:ident, $t:expr, [$($n:literal),*]) => {
+        match $c.len() {
+            $($n => {
+                if let Ok(a) = <[T; $n]>::try_from($c) {
+                    return Some($kernel(a, $t));
+                }
+            })*
+            _ => {}
+        }
+    };
+}
+
+/// The value at `t` of the Bernstein-form polynomial with coefficients `c`,
+/// without modifying `c` (de Casteljau; unrolled for degree ≤ 16, stack
+/// scratch up to degree 101, heap beyond). `None` for an empty slice.
+#[inline]
+pub fn eval<T: Coefficient>(c: &[T], t: f64) -> Option<T> {
+    #[inline(always)]
+    fn value<T: Coefficient, const N: usize>(a: [T; N], t: f64) -> T {
+        cascade(a, t, N - 1)[0]
+    }
+    fixed_sizes!(
+        c,
+        value,
+        t,
+        [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]
+    );
+    let first = *c.first()?;
+    with_scratch(c.len(), first, |s| {
+        s.copy_from_slice(c);
+        de_casteljau(s, t)
+    })
+}
+
+/// The value and first derivative at `t` of the Bernstein-form polynomial
+/// with coefficients `c`, without modifying `c` (see
+/// [`de_casteljau_with_derivative`]). `None` for an empty slice.
+#[inline]
+pub fn eval_with_derivative<T: Coefficient>(c: &[T], t: f64) -> Option<(T, T)> {
+    #[inline(always)]
+    fn both<T: Coefficient, const N: usize>(a: [T; N], t: f64) -> (T, T) {
+        if N == 1 {
+            return (a[0], a[0] * 0.0);
+        }
+        let r = cascade(a, t, N.saturating_sub(2));
+        (lerp(r[0], r[1], t), (r[1] - r[0]) * (N - 1) as f64)
+    }
+    fixed_sizes!(
+        c,
+        both,
+        t,
+        [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17]
+    );
+    let first = *c.first()?;
+    with_scratch(c.len(), first, |s| {
+        s.copy_from_slice(c);
+        de_casteljau_with_derivative(s, t)
+    })
 }
 
 /// Replaces the coefficients of `p` (degree `n = c.len() − 1`) by those of its

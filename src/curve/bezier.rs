@@ -2,9 +2,7 @@
 
 use super::flatten::{Flattening, flatten_pieces};
 use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
-use crate::bernstein::{
-    de_casteljau, de_casteljau_with_derivative, differentiate_in_place, subdivide,
-};
+use crate::bernstein::{self, de_casteljau, differentiate_in_place, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
 use nalgebra::{Point, SVector};
@@ -34,6 +32,8 @@ use nalgebra::{Point, SVector};
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bezier<const D: usize> {
     points: Vec<Point<f64, D>>,
+    /// The same points as vectors: the form the Bernstein kernels evaluate.
+    coeffs: Vec<SVector<f64, D>>,
 }
 
 impl<const D: usize> Bezier<D> {
@@ -44,13 +44,14 @@ impl<const D: usize> Bezier<D> {
     /// for a NaN or infinite coordinate.
     pub fn new(points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
-        Ok(Self { points })
+        Ok(Self::from_valid_points(points))
     }
 
     /// Wraps points the crate computed from valid input (finite, non-empty).
     pub(crate) fn from_valid_points(points: Vec<Point<f64, D>>) -> Self {
         debug_assert!(validate_points(&points).is_ok());
-        Self { points }
+        let coeffs = points.iter().map(|p| p.coords).collect();
+        Self { points, coeffs }
     }
 
     /// The control points.
@@ -74,9 +75,7 @@ impl<const D: usize> Bezier<D> {
             return SVector::zeros();
         }
         with_scratch(n, SVector::zeros(), |s| {
-            for (dst, p) in s.iter_mut().zip(&self.points) {
-                *dst = p.coords;
-            }
+            s.copy_from_slice(&self.coeffs);
             let mut len = n;
             for _ in 0..order {
                 len = differentiate_in_place(&mut s[..len]);
@@ -91,16 +90,14 @@ impl<const D: usize> Bezier<D> {
     pub fn hodograph(&self) -> Bezier<D> {
         let n = self.degree();
         if n == 0 {
-            return Bezier {
-                points: vec![Point::origin()],
-            };
+            return Bezier::from_valid_points(vec![Point::origin()]);
         }
         let points = self
-            .points
+            .coeffs
             .windows(2)
             .map(|w| Point::from((w[1] - w[0]) * n as f64))
             .collect();
-        Bezier { points }
+        Bezier::from_valid_points(points)
     }
 
     /// Splits the curve at `t` into the pieces on `[0, t]` and `[t, 1]`, each a
@@ -111,19 +108,13 @@ impl<const D: usize> Bezier<D> {
     /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside `[0, 1]`.
     pub fn subdivide(&self, t: f64) -> Result<(Bezier<D>, Bezier<D>), Error> {
         check_in_domain(t, (0.0, 1.0))?;
-        let coords: Vec<SVector<f64, D>> = self.points.iter().map(|p| p.coords).collect();
-        let mut left = coords.clone();
-        let mut right = coords.clone();
-        subdivide(&coords, t, &mut left, &mut right);
-        let to_points = |v: Vec<SVector<f64, D>>| v.into_iter().map(Point::from).collect();
-        Ok((
-            Bezier {
-                points: to_points(left),
-            },
-            Bezier {
-                points: to_points(right),
-            },
-        ))
+        let mut left = self.coeffs.clone();
+        let mut right = self.coeffs.clone();
+        subdivide(&self.coeffs, t, &mut left, &mut right);
+        let to_curve = |v: Vec<SVector<f64, D>>| {
+            Bezier::from_valid_points(v.into_iter().map(Point::from).collect())
+        };
+        Ok((to_curve(left), to_curve(right)))
     }
 
     /// The axis-aligned bounding box of the control points, `(min, max)`. By
@@ -157,13 +148,7 @@ impl<const D: usize> Curve<D> for Bezier<D> {
     #[inline]
     fn eval(&self, t: f64) -> Point<f64, D> {
         let t = clamp_to_domain(t, (0.0, 1.0));
-        let n = self.points.len();
-        with_scratch(n, SVector::zeros(), |s| {
-            for (dst, p) in s.iter_mut().zip(&self.points) {
-                *dst = p.coords;
-            }
-            Point::from(de_casteljau(s, t).unwrap_or_else(SVector::zeros))
-        })
+        Point::from(bernstein::eval(&self.coeffs, t).unwrap_or_else(SVector::zeros))
     }
 
     #[inline]
@@ -174,14 +159,8 @@ impl<const D: usize> Curve<D> for Bezier<D> {
     #[inline]
     fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
         let t = clamp_to_domain(t, (0.0, 1.0));
-        let n = self.points.len();
-        with_scratch(n, SVector::zeros(), |s| {
-            for (dst, p) in s.iter_mut().zip(&self.points) {
-                *dst = p.coords;
-            }
-            let (p, d) = de_casteljau_with_derivative(s, t)
-                .unwrap_or_else(|| (SVector::zeros(), SVector::zeros()));
-            (Point::from(p), d)
-        })
+        let (p, d) = bernstein::eval_with_derivative(&self.coeffs, t)
+            .unwrap_or_else(|| (SVector::zeros(), SVector::zeros()));
+        (Point::from(p), d)
     }
 }

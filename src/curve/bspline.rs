@@ -7,8 +7,9 @@
 //! `[t_p, t_n]`, where the basis functions sum to one.
 
 use super::flatten::{Flattening, flatten_pieces};
+use super::pieces::PieceTable;
 use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
-use crate::bernstein::lerp;
+use crate::bernstein::{self, lerp};
 use crate::scratch::with_scratch;
 use crate::{Bezier, Curve, Error};
 use nalgebra::{Point, SVector};
@@ -46,6 +47,8 @@ pub struct BSpline<const D: usize> {
     degree: usize,
     knots: Vec<f64>,
     points: Vec<Point<f64, D>>,
+    /// The Bézier form of every non-empty span, computed at construction.
+    pieces: PieceTable<D>,
 }
 
 /// One polynomial piece of a B-spline as a Bézier curve: on the knot interval
@@ -115,11 +118,25 @@ impl<const D: usize> BSpline<D> {
         if start >= end {
             return Err(Error::EmptyDomain { start, end });
         }
-        Ok(Self {
+        Ok(Self::from_valid_parts(degree, knots, points))
+    }
+
+    /// Builds the curve and its piece table from parts already known to be
+    /// valid (checked by [`new`](Self::new), or derived from a valid curve).
+    fn from_valid_parts(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Self {
+        let n = points.len();
+        let pieces = PieceTable::new(degree, &knots, n, |span, out| {
+            let (a, b) = (knots[span], knots[span + 1]);
+            for (r, dst) in out.iter_mut().enumerate() {
+                *dst = blossom(&knots, &points, degree, span, degree - r, a, b);
+            }
+        });
+        Self {
             degree,
             knots,
             points,
-        })
+            pieces,
+        }
     }
 
     /// The course framework's uniform B-spline: knots `tᵢ = i/(n + k)`,
@@ -181,8 +198,10 @@ impl<const D: usize> BSpline<D> {
     }
 
     /// The index `i` of the knot span `[tᵢ, tᵢ₊₁)` containing `t`, with
-    /// `p ≤ i < n` and `tᵢ < tᵢ₊₁`, found by binary search. `t` is first moved
-    /// into the domain; the domain end belongs to the last non-empty span.
+    /// `p ≤ i < n` and `tᵢ < tᵢ₊₁`. `t` is first moved into the domain; the
+    /// domain end belongs to the last non-empty span. The search runs over
+    /// the distinct break points: binary search, or constant time when they
+    /// are equally spaced (uniform and clamped knots).
     pub fn span(&self, t: f64) -> usize {
         let t = clamp_to_domain(t, self.domain());
         self.span_of_clamped(t)
@@ -190,14 +209,14 @@ impl<const D: usize> BSpline<D> {
 
     #[inline]
     fn span_of_clamped(&self, t: f64) -> usize {
-        let p = self.degree;
-        let n = self.points.len();
-        let mut i = p + self.knots[p + 1..n].partition_point(|&k| k <= t);
-        // Only at the end of the domain can the span found be empty.
-        while i > p && self.knots[i] >= self.knots[i + 1] {
-            i -= 1;
-        }
-        i
+        self.pieces.span(self.pieces.locate(t))
+    }
+
+    /// The point `C(t)` by de Boor's algorithm on the control points (the
+    /// reference for [`Curve::eval`], which evaluates the precomputed Bézier
+    /// form of the span; the two agree to rounding).
+    pub fn eval_de_boor(&self, t: f64) -> Point<f64, D> {
+        Point::from(self.nth_derivative(t, 0))
     }
 
     /// The `order`-th derivative `dᵏC/dtᵏ` at `t` (order 0 is the point as a
@@ -332,11 +351,8 @@ impl<const D: usize> BSpline<D> {
     pub fn derivative_spline(&self) -> BSpline<D> {
         let p = self.degree;
         if p == 0 {
-            return BSpline {
-                degree: 0,
-                knots: self.knots.clone(),
-                points: vec![Point::origin(); self.points.len()],
-            };
+            let zeros = vec![Point::origin(); self.points.len()];
+            return BSpline::from_valid_parts(0, self.knots.clone(), zeros);
         }
         let n = self.points.len();
         let inner = &self.knots[1..self.knots.len() - 1];
@@ -352,11 +368,7 @@ impl<const D: usize> BSpline<D> {
             }
         }
         knots.extend_from_slice(&inner[n - 1..]);
-        BSpline {
-            degree: p - 1,
-            knots,
-            points,
-        }
+        BSpline::from_valid_parts(p - 1, knots, points)
     }
 
     /// The `order`-th derivative spline (order 0 is a copy of the curve;
@@ -410,11 +422,7 @@ impl<const D: usize> BSpline<D> {
         knots.extend_from_slice(&self.knots[..=k]);
         knots.push(t);
         knots.extend_from_slice(&self.knots[k + 1..]);
-        BSpline {
-            degree: p,
-            knots,
-            points,
-        }
+        BSpline::from_valid_parts(p, knots, points)
     }
 
     /// The polynomial pieces of the curve as Bézier curves, one per non-empty
@@ -422,39 +430,21 @@ impl<const D: usize> BSpline<D> {
     ///
     /// The control points of the piece on `[a, b]` are the blossom values
     /// `bᵣ = f(a, …, a, b, …, b)` (`p − r` times `a`, `r` times `b`), computed
-    /// by de Boor's algorithm with a different argument at each level
-    /// (Ramshaw's blossoming principle).
+    /// at construction by de Boor's algorithm with a different argument at
+    /// each level (Ramshaw's blossoming principle).
     pub fn to_bezier_spans(&self) -> Vec<BezierSpan<D>> {
-        let p = self.degree;
-        let n = self.points.len();
-        (p..n)
-            .filter(|&i| self.knots[i] < self.knots[i + 1])
-            .map(|span| {
-                let (a, b) = (self.knots[span], self.knots[span + 1]);
-                let points = (0..=p)
-                    .map(|r| Point::from(self.blossom_in_span(span, p - r, a, b)))
-                    .collect();
-                BezierSpan {
-                    knots: (a, b),
-                    curve: Bezier::from_valid_points(points),
-                }
+        (0..self.pieces.len())
+            .map(|j| BezierSpan {
+                knots: self.pieces.interval(j),
+                curve: Bezier::from_valid_points(
+                    self.pieces
+                        .coeffs(j)
+                        .iter()
+                        .map(|&c| Point::from(c))
+                        .collect(),
+                ),
             })
             .collect()
-    }
-
-    /// The blossom `f(a, …, a, b, …, b)` with `count_a` copies of `a` and the
-    /// rest `b`, for the polynomial of `span`.
-    fn blossom_in_span(&self, span: usize, count_a: usize, a: f64, b: f64) -> SVector<f64, D> {
-        let p = self.degree;
-        let knots = &self.knots;
-        with_scratch(p + 1, SVector::zeros(), |s| {
-            self.load_span(span, s);
-            for level in 1..=p {
-                let u = if level <= count_a { a } else { b };
-                de_boor_level(knots, p, span, s, u, level);
-            }
-            s[p]
-        })
     }
 
     /// Adaptive flattening of the whole curve (span by span) to `tolerance`,
@@ -480,16 +470,15 @@ impl<const D: usize> Curve<D> for BSpline<D> {
         (self.knots[self.degree], self.knots[self.points.len()])
     }
 
+    /// Finds the piece, then runs de Casteljau on its precomputed Bézier
+    /// form at `u = (t − a)/(b − a)`.
     #[inline]
     fn eval(&self, t: f64) -> Point<f64, D> {
-        let p = self.degree;
         let t = clamp_to_domain(t, self.domain());
-        let span = self.span_of_clamped(t);
-        with_scratch(p + 1, SVector::zeros(), |s| {
-            self.load_span(span, s);
-            de_boor_levels(&self.knots, p, span, s, t, p);
-            Point::from(s[p])
-        })
+        let j = self.pieces.locate(t);
+        let (a, b) = self.pieces.interval(j);
+        let u = (t - a) / (b - a);
+        Point::from(bernstein::eval(self.pieces.coeffs(j), u).unwrap_or_else(SVector::zeros))
     }
 
     #[inline]
@@ -497,27 +486,42 @@ impl<const D: usize> Curve<D> for BSpline<D> {
         self.eval_with_derivative(t).1
     }
 
-    /// One de Boor pass: after `p − 1` levels the two remaining points
-    /// `d₀, d₁` give `C′(t) = p·(d₁ − d₀)/(tᵢ₊₁ − tᵢ)` and the last level gives
-    /// `C(t)`.
+    /// As [`eval`](Curve::eval); the derivative of the piece's Bézier form is
+    /// scaled by `1/(b − a)`.
     #[inline]
     fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
-        let p = self.degree;
         let t = clamp_to_domain(t, self.domain());
-        let span = self.span_of_clamped(t);
-        if p == 0 {
-            return (self.points[span], SVector::zeros());
-        }
-        let knots = &self.knots;
-        with_scratch(p + 1, SVector::zeros(), |s| {
-            self.load_span(span, s);
-            de_boor_levels(knots, p, span, s, t, p - 1);
-            let (t0, t1) = (knots[span], knots[span + 1]);
-            let derivative = (s[p] - s[p - 1]) / (t1 - t0) * p as f64;
-            let point = lerp(s[p - 1], s[p], (t - t0) / (t1 - t0));
-            (Point::from(point), derivative)
-        })
+        let j = self.pieces.locate(t);
+        let (a, b) = self.pieces.interval(j);
+        let w = b - a;
+        let (p, d) = bernstein::eval_with_derivative(self.pieces.coeffs(j), (t - a) / w)
+            .unwrap_or_else(|| (SVector::zeros(), SVector::zeros()));
+        (Point::from(p), d / w)
     }
+}
+
+/// The blossom `f(a, …, a, b, …, b)` (`count_a` copies of `a`, the rest `b`)
+/// of the polynomial on knot span `span`: de Boor's algorithm with argument
+/// `a` at the first `count_a` levels and `b` after.
+fn blossom<const D: usize>(
+    knots: &[f64],
+    points: &[Point<f64, D>],
+    p: usize,
+    span: usize,
+    count_a: usize,
+    a: f64,
+    b: f64,
+) -> SVector<f64, D> {
+    with_scratch(p + 1, SVector::zeros(), |s| {
+        for (dst, pt) in s.iter_mut().zip(&points[span - p..=span]) {
+            *dst = pt.coords;
+        }
+        for level in 1..=p {
+            let u = if level <= count_a { a } else { b };
+            de_boor_level(knots, p, span, s, u, level);
+        }
+        s[p]
+    })
 }
 
 /// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on

@@ -23,6 +23,7 @@
 mod bezier;
 mod bspline;
 mod flatten;
+mod pieces;
 
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};

@@ -1,0 +1,111 @@
+//! The polynomial pieces of a B-spline in Bézier form, precomputed once, and
+//! the search for the piece that contains a parameter.
+//!
+//! A B-spline of degree `p` is a polynomial of degree `p` on each non-empty
+//! knot span `[tᵢ, tᵢ₊₁)` of its domain. [`PieceTable`] stores, for each such
+//! span in order, its break points and its Bézier control points (`p + 1`
+//! vectors, from blossoming at construction). Evaluating then needs only the
+//! piece search and one de Casteljau cascade on `u = (t − a)/(b − a)`, which is
+//! exact at both ends (`u = 0` and `u = 1` give the end control points).
+//!
+//! The piece search is a binary search over the break points, or, when the
+//! break points are (to rounding) equally spaced, as for the course
+//! framework's uniform knots and for clamped knots, a direct guess
+//! `⌊(t − b₀)·m/(b_m − b₀)⌋` corrected by comparing with the neighbouring
+//! break points: constant time whatever the number of control points.
+
+use nalgebra::SVector;
+
+/// The Bézier pieces of a B-spline and how to find them.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PieceTable<const D: usize> {
+    /// `b₀ < b₁ < … < b_m`: the distinct knot values of the domain.
+    breaks: Vec<f64>,
+    /// For piece `j`, the index `i` of its knot span `[tᵢ, tᵢ₊₁)`.
+    spans: Vec<usize>,
+    /// `p + 1` Bézier control points per piece, piece after piece.
+    coeffs: Vec<SVector<f64, D>>,
+    /// `m/(b_m − b₀)` when the break points are equally spaced to rounding.
+    uniform_scale: Option<f64>,
+    /// Control points per piece: `p + 1`.
+    width: usize,
+}
+
+impl<const D: usize> PieceTable<D> {
+    /// Builds the table for the non-empty spans `i` in `p..n` of `knots`,
+    /// taking each span's Bézier control points from `bezier_points(i, out)`.
+    pub(crate) fn new(
+        degree: usize,
+        knots: &[f64],
+        n: usize,
+        mut bezier_points: impl FnMut(usize, &mut [SVector<f64, D>]),
+    ) -> Self {
+        let spans: Vec<usize> = (degree..n).filter(|&i| knots[i] < knots[i + 1]).collect();
+        let mut breaks: Vec<f64> = spans.iter().map(|&i| knots[i]).collect();
+        breaks.push(knots[n]);
+        let mut coeffs = vec![SVector::zeros(); spans.len() * (degree + 1)];
+        for (&i, chunk) in spans.iter().zip(coeffs.chunks_exact_mut(degree + 1)) {
+            bezier_points(i, chunk);
+        }
+        let m = spans.len();
+        let (first, last) = (breaks[0], breaks[m]);
+        let h = (last - first) / m as f64;
+        let equally_spaced = breaks
+            .iter()
+            .enumerate()
+            .all(|(j, &b)| (b - (first + h * j as f64)).abs() <= 1e-9 * h);
+        Self {
+            breaks,
+            spans,
+            coeffs,
+            uniform_scale: equally_spaced.then(|| m as f64 / (last - first)),
+            width: degree + 1,
+        }
+    }
+
+    /// The number of pieces.
+    pub(crate) fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// The piece containing `t`, which must lie in the domain `[b₀, b_m]`:
+    /// the `j` with `b_j ≤ t < b_{j+1}`, or the last piece at `t = b_m`.
+    #[inline]
+    pub(crate) fn locate(&self, t: f64) -> usize {
+        let m = self.spans.len();
+        match self.uniform_scale {
+            Some(scale) => {
+                // The guess is exact up to rounding; the comparisons with the
+                // real break points make the answer exact.
+                let guess = ((t - self.breaks[0]) * scale) as usize;
+                let mut j = guess.min(m - 1);
+                while j > 0 && t < self.breaks[j] {
+                    j -= 1;
+                }
+                while j + 1 < m && t >= self.breaks[j + 1] {
+                    j += 1;
+                }
+                j
+            }
+            None => self.breaks[1..m].partition_point(|&b| b <= t),
+        }
+    }
+
+    /// The knot span index `i` of piece `j`.
+    #[inline]
+    pub(crate) fn span(&self, j: usize) -> usize {
+        self.spans[j]
+    }
+
+    /// The parameter interval `(a, b)` of piece `j`.
+    #[inline]
+    pub(crate) fn interval(&self, j: usize) -> (f64, f64) {
+        (self.breaks[j], self.breaks[j + 1])
+    }
+
+    /// The Bézier control points of piece `j`.
+    #[inline]
+    pub(crate) fn coeffs(&self, j: usize) -> &[SVector<f64, D>] {
+        &self.coeffs[j * self.width..(j + 1) * self.width]
+    }
+}
