@@ -358,12 +358,11 @@ impl<const D: usize> BSpline<D> {
         let inner = &self.knots[1..self.knots.len() - 1];
         let mut knots = Vec::with_capacity(inner.len());
         let mut points = Vec::with_capacity(n - 1);
-        for i in 0..n - 1 {
+        for (i, pair) in self.points.windows(2).enumerate() {
             // The basis function of Qᵢ lives on inner[i ..= i + p].
-            let den = self.knots[i + p + 1] - self.knots[i + 1];
+            let den = inner[i + p] - inner[i];
             if den > 0.0 {
-                let diff = self.points[i + 1] - self.points[i];
-                points.push(Point::from(diff / den * p as f64));
+                points.push(Point::from((pair[1] - pair[0]) / den * p as f64));
                 knots.push(inner[i]);
             }
         }
