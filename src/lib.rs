@@ -54,6 +54,7 @@ pub use nalgebra;
 pub mod bernstein;
 pub mod curve;
 mod error;
+pub mod roots;
 mod scratch;
 
 /// The largest control-point coordinate or knot magnitude accepted (`1e100`).

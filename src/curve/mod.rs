@@ -37,6 +37,31 @@ use nalgebra::{Point, SVector};
 /// Implementors provide the domain, the point and the first derivative; the
 /// other methods have default implementations in terms of those.
 ///
+/// ```
+/// use revolve::Curve;
+/// use revolve::nalgebra::{Point2, Vector2};
+///
+/// /// Your own curve type: a circular arc of radius r.
+/// struct Arc { r: f64 }
+///
+/// impl Curve<2> for Arc {
+///     fn domain(&self) -> (f64, f64) { (0.0, std::f64::consts::FRAC_PI_2) }
+///     fn eval(&self, t: f64) -> Point2<f64> {
+///         let t = t.clamp(0.0, std::f64::consts::FRAC_PI_2);
+///         Point2::new(self.r * t.cos(), self.r * t.sin())
+///     }
+///     fn derivative(&self, t: f64) -> Vector2<f64> {
+///         let t = t.clamp(0.0, std::f64::consts::FRAC_PI_2);
+///         Vector2::new(-self.r * t.sin(), self.r * t.cos())
+///     }
+/// }
+///
+/// let samples = Arc { r: 2.0 }.discretize(8);
+/// assert_eq!(samples.len(), 9);
+/// assert!(samples.iter().all(|s| (s.point.coords.norm() - 2.0).abs() < 1e-15));
+/// assert!(samples.iter().all(|s| s.point.coords.dot(&s.derivative).abs() < 1e-15));
+/// ```
+///
 /// # Contract
 /// - `domain()` returns `(a, b)` with `a < b`, both finite.
 /// - `eval` and `derivative` accept any `f64`. The crate's own curves evaluate
