@@ -51,11 +51,14 @@
 
 pub use nalgebra;
 
+mod aabb;
 pub mod bernstein;
 pub mod curve;
 mod error;
+pub mod ray;
 pub mod roots;
 mod scratch;
+pub mod surface;
 
 /// The largest control-point coordinate or knot magnitude accepted (`1e100`).
 ///
@@ -63,8 +66,11 @@ mod scratch;
 /// squared distances of accepted values cannot overflow.
 pub const MAX_COORDINATE: f64 = 1e100;
 
+pub use aabb::Aabb;
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
+pub use ray::{Hit, Intersect, Ray, Tolerance};
+pub use surface::{Revolution, Surface};
 
 /// The README's code blocks, compiled and run as doctests.
 #[cfg(doctest)]

@@ -1,11 +1,13 @@
 //! Bézier curves of any degree and dimension.
 
 use super::flatten::{Flattening, flatten_pieces};
-use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
+use super::{
+    check_in_domain, clamp_to_domain, point_bounds, tangent_from_derivatives, validate_points,
+};
 use crate::bernstein::{self, de_casteljau, differentiate_in_place, subdivide};
 use crate::scratch::with_scratch;
-use crate::{Curve, Error};
-use nalgebra::{Point, SVector};
+use crate::{BezierSpan, Curve, Error};
+use nalgebra::{Point, SVector, Unit};
 
 /// A Bézier curve `P(t) = Σᵢ Pᵢ Bᵢⁿ(t)`, `t ∈ [0, 1]`, of degree `n` (one less
 /// than the number of control points) in `D` dimensions.
@@ -154,6 +156,23 @@ impl<const D: usize> Curve<D> for Bezier<D> {
     #[inline]
     fn derivative(&self, t: f64) -> SVector<f64, D> {
         self.eval_with_derivative(t).1
+    }
+
+    /// One span: the curve itself on `(0, 1)`.
+    fn bezier_spans(&self) -> Option<Vec<BezierSpan<D>>> {
+        Some(vec![BezierSpan {
+            knots: (0.0, 1.0),
+            curve: self.clone(),
+        }])
+    }
+
+    /// Exact: the first non-negligible hodograph of order `1 … n`.
+    fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
+        let t = clamp_to_domain(t, (0.0, 1.0));
+        let n = self.degree();
+        let scale = self.coeffs.iter().fold(0.0_f64, |m, c| m.max(c.amax()));
+        let natural = |k: usize| scale * (n - k + 1..=n).map(|x| x as f64).product::<f64>();
+        tangent_from_derivatives(n, t >= 1.0, natural, |k| self.nth_derivative(t, k))
     }
 
     #[inline]

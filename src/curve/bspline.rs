@@ -8,11 +8,13 @@
 
 use super::flatten::{Flattening, flatten_pieces};
 use super::pieces::PieceTable;
-use super::{check_in_domain, clamp_to_domain, point_bounds, validate_points};
+use super::{
+    check_in_domain, clamp_to_domain, point_bounds, tangent_from_derivatives, validate_points,
+};
 use crate::bernstein::{self, lerp};
 use crate::scratch::with_scratch;
 use crate::{Bezier, Curve, Error};
-use nalgebra::{Point, SVector};
+use nalgebra::{Point, SVector, Unit};
 
 /// A B-spline curve of any degree in `D` dimensions.
 ///
@@ -483,6 +485,31 @@ impl<const D: usize> Curve<D> for BSpline<D> {
     #[inline]
     fn derivative(&self, t: f64) -> SVector<f64, D> {
         self.eval_with_derivative(t).1
+    }
+
+    /// The precomputed Bézier form of every non-empty span
+    /// ([`to_bezier_spans`](BSpline::to_bezier_spans)).
+    fn bezier_spans(&self) -> Option<Vec<BezierSpan<D>>> {
+        Some(self.to_bezier_spans())
+    }
+
+    /// Exact: the first non-negligible derivative of order `1 … p`, by de
+    /// Boor on the control points' differences (repeated control points give
+    /// exact zeros there). At an interior knot the limit is from the right.
+    fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
+        let p = self.degree;
+        let domain = self.domain();
+        let t = clamp_to_domain(t, domain);
+        let j = self.pieces.locate(t);
+        let (a, b) = self.pieces.interval(j);
+        let scale = self
+            .points
+            .iter()
+            .fold(0.0_f64, |m, c| m.max(c.coords.amax()));
+        let natural = |k: usize| {
+            scale * (p - k + 1..=p).map(|x| x as f64).product::<f64>() / (b - a).powi(k as i32)
+        };
+        tangent_from_derivatives(p, t >= domain.1, natural, |k| self.nth_derivative(t, k))
     }
 
     /// As [`eval`](Curve::eval); the derivative of the piece's Bézier form is

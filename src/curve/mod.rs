@@ -30,7 +30,7 @@ pub use bspline::{BSpline, BezierSpan};
 pub use flatten::Flattening;
 
 use crate::Error;
-use nalgebra::{Point, SVector};
+use nalgebra::{Point, SVector, Unit};
 
 /// A parametric curve in `D` dimensions.
 ///
@@ -83,6 +83,41 @@ pub trait Curve<const D: usize> {
     /// [`derivative`](Curve::derivative).
     fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
         (self.eval(t), self.derivative(t))
+    }
+
+    /// The unit tangent, pointing toward increasing `t`: the first derivative
+    /// normalized, or, where it vanishes (repeated control points, a pole of
+    /// a profile), the limit of the tangent from inside the domain (from the
+    /// right, and from the left at the end of the domain). `None` where the
+    /// curve is locally constant.
+    ///
+    /// The default falls back to a short chord (`10⁻⁶` of the domain) when the
+    /// derivative is exactly zero; the crate's curves use their exact higher
+    /// derivatives instead.
+    fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
+        let d = self.derivative(t);
+        if d != SVector::<f64, D>::zeros() {
+            return Unit::try_new(d, 0.0);
+        }
+        let (a, b) = self.domain();
+        let h = (b - a) * 1e-6;
+        let t = clamp_to_domain(t, (a, b));
+        let chord = if t + h <= b {
+            self.eval(t + h) - self.eval(t)
+        } else {
+            self.eval(t) - self.eval(t - h)
+        };
+        Unit::try_new(chord, 0.0)
+    }
+
+    /// The curve as a sequence of Bézier pieces in parameter order, if it is
+    /// piecewise polynomial; `None` (the default) otherwise.
+    ///
+    /// Exact algorithms use it: a [`Revolution`](crate::Revolution) whose
+    /// profile has Bézier spans gets the exact ray intersector, and bounds
+    /// from control points. [`Bezier`] and [`BSpline`] provide it.
+    fn bezier_spans(&self) -> Option<Vec<BezierSpan<D>>> {
+        None
     }
 
     /// `segments + 1` samples at uniformly spaced parameters
@@ -172,4 +207,28 @@ pub(crate) fn point_bounds<const D: usize>(
         (lo.inf(&p.coords), hi.sup(&p.coords))
     });
     (Point::from(lo), Point::from(hi))
+}
+
+/// The unit tangent from the first derivative of order `1 ..= max_order`
+/// that is not negligible, oriented toward increasing `t`.
+///
+/// Near `t₀` the curve is `C(t₀) + C⁽ᵏ⁾(t₀)(t − t₀)ᵏ/k! + …`, so the limit of
+/// the tangent from the right is `C⁽ᵏ⁾` and from the left (`from_left`, used at
+/// the end of the domain) `(−1)ᵏ⁺¹ C⁽ᵏ⁾`. Derivative `k` counts as zero when
+/// it is below `1e-12 · natural(k)`, its size for a curve of that scale.
+pub(crate) fn tangent_from_derivatives<const D: usize>(
+    max_order: usize,
+    from_left: bool,
+    natural: impl Fn(usize) -> f64,
+    nth: impl Fn(usize) -> SVector<f64, D>,
+) -> Option<Unit<SVector<f64, D>>> {
+    for k in 1..=max_order {
+        let d = nth(k);
+        let norm = d.norm();
+        if norm > 1e-12 * natural(k) && norm > 0.0 {
+            let flip = from_left && k % 2 == 0;
+            return Unit::try_new(if flip { -d } else { d }, 0.0);
+        }
+    }
+    None
 }

@@ -1,0 +1,488 @@
+//! Exact ray intersection for surfaces of revolution: the angle is
+//! eliminated and each Bézier span of the profile gives one polynomial.
+//!
+//! In the local frame (axis = `y`) a ray `o + t·d` meets the surface where, for
+//! some profile parameter `u`, the ray point at height `y(u)` is at distance
+//! `|x(u)|` from the axis. Multiplying by `d_y²` instead of dividing by `d_y`:
+//!
+//! `f(u) = A(u)² + B(u)² − (d_y·x(u))² = 0`, with
+//! `A = o_x d_y + (y(u) − o_y) d_x`, `B = o_z d_y + (y(u) − o_y) d_z`.
+//!
+//! `A`, `B` and `d_y x` are polynomials of the span's degree `n` whose Bernstein
+//! coefficients come straight from the control points, so `f` has degree `2n`
+//! with coefficients `f_k = Σ_{i+j=k} C(n,i)C(n,j)/C(2n,k) (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ)`.
+//! The same sums over magnitudes give a rounding bound for every
+//! coefficient, so [`find_roots`] can isolate all roots without missing one.
+//! Each root `u` gives `t` (from the height, or from the radius for shallow
+//! rays) and `θ` (from the hit point), and Newton's method on the unsquared
+//! system `o + t d − S(u, θ) = 0` with its analytic Jacobian polishes the hit.
+//! Rays perpendicular to the axis (`d_y = 0`) solve `y(u) = o_y` instead.
+//!
+//! Spans are culled by their height and radius ranges and visited in order of
+//! where the ray enters their bounding cylinder; the search stops once the
+//! best hit is nearer than the next span.
+
+use crate::bernstein::{binomial, eval_with_derivative};
+use crate::roots::{Root, find_roots};
+use crate::scratch::with_scratch;
+use crate::{BezierSpan, Tolerance};
+use nalgebra::{Matrix3, Point3, Vector3};
+use std::f64::consts::TAU;
+
+/// Spans visited in sorted order; more than this are visited after, unsorted.
+const SORTED_SPANS: usize = 64;
+
+/// Hits whose Newton residual is within `max(tolerance, ACCEPT) × scale` are
+/// accepted; farther candidates are misses.
+const ACCEPT: f64 = 1e-9;
+
+/// The per-surface data of the exact intersector, computed once.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct SpanTable {
+    degree: usize,
+    spans: Vec<Span>,
+    /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// `C(n,i)·C(n,j)/C(2n,i+j)`, row-major `(n + 1) × (n + 1)`.
+    weights: Vec<f64>,
+    /// Largest `|x|`, and the height range, over all control points.
+    pub(crate) r_max: f64,
+    pub(crate) y_range: (f64, f64),
+    /// Largest absolute local coordinate: the scale of relative tolerances.
+    pub(crate) scale: f64,
+}
+
+/// One profile span and its conservative ranges.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Span {
+    /// The profile parameters the span covers.
+    u: (f64, f64),
+    y: (f64, f64),
+    /// `|x|` ranges between `r.0` and `r.1` on the span.
+    r: (f64, f64),
+}
+
+/// A hit in the local frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LocalHit {
+    pub(crate) t: f64,
+    pub(crate) u: f64,
+    pub(crate) theta: f64,
+    pub(crate) point: Point3<f64>,
+}
+
+/// A ray in the local frame and the interval searched.
+struct Query {
+    o: Vector3<f64>,
+    d: Vector3<f64>,
+    /// Position error accepted for a hit.
+    accept: f64,
+    /// Residual at which Newton stops.
+    target: f64,
+    max_iterations: u32,
+}
+
+impl SpanTable {
+    /// The table for a profile given as Bézier spans; `None` when there are
+    /// none or their degrees differ.
+    pub(crate) fn new(spans: &[BezierSpan<2>]) -> Option<Self> {
+        let degree = spans.first()?.curve.degree();
+        if spans.iter().any(|s| s.curve.degree() != degree) {
+            return None;
+        }
+        let mut xs = Vec::with_capacity(spans.len() * (degree + 1));
+        let mut ys = Vec::with_capacity(xs.capacity());
+        let mut table = Vec::with_capacity(spans.len());
+        for s in spans {
+            let pts = s.curve.points();
+            xs.extend(pts.iter().map(|p| p.x));
+            ys.extend(pts.iter().map(|p| p.y));
+            let (y0, y1) = pts
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.y), b.max(p.y))
+                });
+            let r1 = pts.iter().fold(0.0_f64, |m, p| m.max(p.x.abs()));
+            // If the control points' x keep one sign, |x| ≥ min |xᵢ|.
+            let one_side = pts.iter().all(|p| p.x > 0.0) || pts.iter().all(|p| p.x < 0.0);
+            let r0 = if one_side {
+                pts.iter().fold(f64::INFINITY, |m, p| m.min(p.x.abs()))
+            } else {
+                0.0
+            };
+            table.push(Span {
+                u: s.knots,
+                y: (y0, y1),
+                r: (r0, r1),
+            });
+        }
+        let n = degree;
+        let weights = (0..=n)
+            .flat_map(|i| {
+                (0..=n).map(move |j| binomial(n, i) * binomial(n, j) / binomial(2 * n, i + j))
+            })
+            .collect();
+        let r_max = table.iter().fold(0.0_f64, |m, s| m.max(s.r.1));
+        let y_range = table
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
+                (a.min(s.y.0), b.max(s.y.1))
+            });
+        let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
+        Some(SpanTable {
+            degree,
+            spans: table,
+            xs,
+            ys,
+            weights,
+            r_max,
+            y_range,
+            scale,
+        })
+    }
+
+    fn coeffs(&self, k: usize) -> (&[f64], &[f64]) {
+        let w = self.degree + 1;
+        (&self.xs[k * w..(k + 1) * w], &self.ys[k * w..(k + 1) * w])
+    }
+
+    /// The nearest hit of `o + t·d` with `t_min < t < t_max`, in the local
+    /// frame.
+    pub(crate) fn intersect(
+        &self,
+        o: Point3<f64>,
+        d: Vector3<f64>,
+        t_min: f64,
+        t_max: f64,
+        tol: &Tolerance,
+    ) -> Option<LocalHit> {
+        let dn = d.norm();
+        if !(dn > 0.0 && dn.is_finite()) || o.coords.iter().any(|c| !c.is_finite()) {
+            return None;
+        }
+        let scale = self.scale.max(f64::MIN_POSITIVE);
+        let q = Query {
+            o: o.coords,
+            d,
+            accept: tol.relative.max(ACCEPT) * scale,
+            target: tol.relative * scale,
+            max_iterations: tol.max_iterations,
+        };
+        // Hits within the position uncertainty of the origin are the origin
+        // itself (a secondary ray leaving the surface).
+        let t_floor = t_min + q.accept / dn;
+        let mut best: Option<LocalHit> = None;
+        let mut t_best = t_max;
+        let mut order = [(0.0_f64, 0_u32); SORTED_SPANS];
+        let mut sorted = 0;
+        let mut overflow = false;
+        for (k, span) in self.spans.iter().enumerate() {
+            let Some(entry) = span_entry(span, &q, t_floor, t_best) else {
+                continue;
+            };
+            if sorted < SORTED_SPANS {
+                let mut i = sorted;
+                while i > 0 && order[i - 1].0 > entry {
+                    order[i] = order[i - 1];
+                    i -= 1;
+                }
+                order[i] = (entry, k as u32);
+                sorted += 1;
+            } else {
+                overflow = true;
+            }
+        }
+        for &(entry, k) in &order[..sorted] {
+            if entry >= t_best {
+                break;
+            }
+            self.span_hits(k as usize, &q, t_floor, &mut t_best, &mut best);
+        }
+        if overflow {
+            for k in 0..self.spans.len() {
+                if !order[..sorted].iter().any(|&(_, j)| j as usize == k) {
+                    self.span_hits(k, &q, t_floor, &mut t_best, &mut best);
+                }
+            }
+        }
+        best
+    }
+
+    /// Finds the hits of span `k` and keeps the nearest in `best`.
+    fn span_hits(
+        &self,
+        k: usize,
+        q: &Query,
+        t_floor: f64,
+        t_best: &mut f64,
+        best: &mut Option<LocalHit>,
+    ) {
+        let mut consider = |s: f64, t_guess: f64| {
+            if let Some(hit) = self.polish(k, q, s, t_guess) {
+                if hit.t > t_floor && hit.t < *t_best {
+                    *t_best = hit.t;
+                    *best = Some(hit);
+                }
+            }
+        };
+        let n2 = 2 * self.degree + 1;
+        if q.d.y == 0.0 {
+            // Perpendicular to the axis: the ray stays at height o_y.
+            let (_, ys) = self.coeffs(k);
+            with_scratch(ys.len(), 0.0, |g| {
+                let mut err = 0.0_f64;
+                for (gi, &y) in g.iter_mut().zip(ys) {
+                    *gi = y - q.o.y;
+                    err = err.max(2.0 * f64::EPSILON * (y.abs() + q.o.y.abs()));
+                }
+                find_roots(g, err, |root| {
+                    for s in root_samples(root) {
+                        for t in self.radius_times(k, q, s) {
+                            consider(s, t);
+                        }
+                    }
+                });
+            });
+            return;
+        }
+        with_scratch(n2, 0.0, |f| {
+            let err = self.span_polynomial(k, q, f);
+            find_roots(f, err, |root| {
+                for s in root_samples(root) {
+                    for t in self.candidate_times(k, q, s) {
+                        consider(s, t);
+                    }
+                }
+            });
+        });
+    }
+
+    /// Writes the `2n + 1` Bernstein coefficients of `f` for span `k` into
+    /// `f` and returns a bound on their rounding error.
+    fn span_polynomial(&self, k: usize, q: &Query, f: &mut [f64]) -> f64 {
+        let n = self.degree;
+        let w = n + 1;
+        let (xs, ys) = self.coeffs(k);
+        let (o, d) = (q.o, q.d);
+        let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
+        f.fill(0.0);
+        // aᵢ, bᵢ, cᵢ and their magnitude bounds (for the rounding bound).
+        with_scratch(6 * w, 0.0, |buf| {
+            let (abc, mags) = buf.split_at_mut(3 * w);
+            for i in 0..w {
+                let h = ys[i] - o.y;
+                abc[3 * i] = oxdy + h * d.x;
+                abc[3 * i + 1] = ozdy + h * d.z;
+                abc[3 * i + 2] = d.y * xs[i];
+                mags[3 * i] = oxdy.abs() + (h * d.x).abs();
+                mags[3 * i + 1] = ozdy.abs() + (h * d.z).abs();
+                mags[3 * i + 2] = abc[3 * i + 2].abs();
+            }
+            let mut bound = 0.0_f64;
+            for i in 0..w {
+                let (a, m) = (&abc[3 * i..3 * i + 3], &mags[3 * i..3 * i + 3]);
+                for j in 0..w {
+                    let (b, mj) = (&abc[3 * j..3 * j + 3], &mags[3 * j..3 * j + 3]);
+                    let weight = self.weights[i * w + j];
+                    f[i + j] += weight * (a[0] * b[0] + a[1] * b[1] - a[2] * b[2]);
+                    bound = bound.max(weight * (m[0] * mj[0] + m[1] * mj[1] + m[2] * mj[2]));
+                }
+            }
+            // Inputs carry up to 3ε relative error each; products, the three
+            // terms and the n + 1 sums add the rest: (4n + 16)ε per term.
+            (4 * n + 16) as f64 * f64::EPSILON * bound * w as f64
+        })
+    }
+
+    /// Ray parameters to try for the root `s` of span `k`: from the height
+    /// when the ray is steep, else from the radius (both crossings), nearest
+    /// the height's answer first.
+    fn candidate_times(&self, k: usize, q: &Query, s: f64) -> impl Iterator<Item = f64> {
+        let (xs, ys) = self.coeffs(k);
+        let y = crate::bernstein::eval(ys, s).unwrap_or(0.0);
+        let t_height = (y - q.o.y) / q.d.y;
+        let horizontal = q.d.x.hypot(q.d.z);
+        let times = if q.d.y.abs() >= horizontal {
+            [Some(t_height), None]
+        } else {
+            let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
+            let [a, b] = circle_times(q, x);
+            // Keep the radius solution that agrees with the height.
+            match (a, b) {
+                (Some(a), Some(b)) => {
+                    if (a - t_height).abs() <= (b - t_height).abs() {
+                        [Some(a), Some(b)]
+                    } else {
+                        [Some(b), Some(a)]
+                    }
+                }
+                _ => [Some(t_height), None],
+            }
+        };
+        times.into_iter().flatten()
+    }
+
+    /// For a ray perpendicular to the axis at the root `s` of `y(s) = o_y`:
+    /// where the ray crosses the circle of radius `|x(s)|`.
+    fn radius_times(&self, k: usize, q: &Query, s: f64) -> impl Iterator<Item = f64> {
+        let (xs, _) = self.coeffs(k);
+        let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
+        circle_times(q, x).into_iter().flatten()
+    }
+
+    /// Newton's method on `o + t d − S(s, θ) = 0` for span `k` from `(s, t)`,
+    /// `θ` taken from the ray point. Returns the hit if its residual is
+    /// acceptable and `s` stays on the span.
+    fn polish(&self, k: usize, q: &Query, s0: f64, t0: f64) -> Option<LocalHit> {
+        let (xs, ys) = self.coeffs(k);
+        let eval = |s: f64| {
+            let (x, dx) = eval_with_derivative(xs, s).unwrap_or((0.0, 0.0));
+            let (y, dy) = eval_with_derivative(ys, s).unwrap_or((0.0, 0.0));
+            (x, y, dx, dy)
+        };
+        let (mut s, mut t) = (s0, t0);
+        let p = q.o + q.d * t;
+        let (x0, ..) = eval(s);
+        let mut theta = if x0 >= 0.0 {
+            (-p.z).atan2(p.x)
+        } else {
+            p.z.atan2(-p.x)
+        };
+        let residual = |s: f64, t: f64, theta: f64| {
+            let (x, y, ..) = eval(s);
+            let (sn, cs) = theta.sin_cos();
+            q.o + q.d * t - Vector3::new(x * cs, y, -x * sn)
+        };
+        let mut f = residual(s, t, theta);
+        let mut r = f.norm();
+        let mut best = (r, s, t, theta);
+        for _ in 0..q.max_iterations {
+            if r <= q.target {
+                break;
+            }
+            let (x, _, dx, dy) = eval(s);
+            let (sn, cs) = theta.sin_cos();
+            let j = Matrix3::from_columns(&[
+                q.d,
+                -Vector3::new(dx * cs, dy, -dx * sn),
+                -Vector3::new(-x * sn, 0.0, -x * cs),
+            ]);
+            let Some(step) = j.lu().solve(&(-f)) else {
+                break;
+            };
+            if !step.iter().all(|v| v.is_finite()) {
+                break;
+            }
+            t += step.x;
+            s = (s + step.y).clamp(-0.5, 1.5);
+            theta += step.z;
+            f = residual(s, t, theta);
+            let r_new = f.norm();
+            if r_new < best.0 {
+                best = (r_new, s, t, theta);
+            }
+            if r_new >= r {
+                break;
+            }
+            r = r_new;
+        }
+        let (r, s, t, theta) = best;
+        let slack = 1e-9;
+        let accepted = r <= q.accept && (-slack..=1.0 + slack).contains(&s) && t.is_finite();
+        if !accepted {
+            return None;
+        }
+        let s = s.clamp(0.0, 1.0);
+        let (u0, u1) = self.spans[k].u;
+        let (x, y, ..) = eval(s);
+        let theta = theta.rem_euclid(TAU) + 0.0; // no −0
+        let (sn, cs) = theta.sin_cos();
+        Some(LocalHit {
+            t,
+            u: u0 + (u1 - u0) * s,
+            theta,
+            point: Point3::new(x * cs, y, -x * sn),
+        })
+    }
+}
+
+/// The parameters to try for one root report: the root itself, or the ends
+/// and middle of an interval on which the polynomial vanishes.
+fn root_samples(root: Root) -> impl Iterator<Item = f64> {
+    let v = match root {
+        Root::At(s) => [Some(s), None, None],
+        Root::Flat { from, to } => [Some(from), Some(0.5 * (from + to)), Some(to)],
+    };
+    v.into_iter().flatten()
+}
+
+/// Where `o + t d` is at distance `|x|` from the axis: the roots of
+/// `|o_xz + t d_xz|² = x²`, nearest first. A ray that only approaches the
+/// circle (negative discriminant within rounding) gets its closest approach.
+fn circle_times(q: &Query, x: f64) -> [Option<f64>; 2] {
+    let a = q.d.x * q.d.x + q.d.z * q.d.z;
+    if a == 0.0 {
+        return [None, None];
+    }
+    let b = q.o.x * q.d.x + q.o.z * q.d.z; // half of the linear coefficient
+    let c = q.o.x * q.o.x + q.o.z * q.o.z - x * x;
+    let disc = b * b - a * c;
+    if disc <= 0.0 {
+        return [Some(-b / a), None];
+    }
+    // Stable: the larger-magnitude root first, the other from the product.
+    let h = -(b + b.signum() * disc.sqrt());
+    let (t1, t2) = if h != 0.0 { (h / a, c / h) } else { (0.0, 0.0) };
+    [Some(t1.min(t2)), Some(t1.max(t2))]
+}
+
+/// Where the ray enters span's bounding cylinder (clipped to
+/// `(t_floor, t_best)`), or `None` if it misses it or stays within the
+/// span's inner radius.
+fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> {
+    let (o, d) = (q.o, q.d);
+    let pad = q.accept;
+    let (mut lo, mut hi) = (t_floor - pad / d.norm(), t_best);
+    // Height slab.
+    let (y0, y1) = (span.y.0 - pad, span.y.1 + pad);
+    if d.y == 0.0 {
+        if o.y < y0 || o.y > y1 {
+            return None;
+        }
+    } else {
+        let (a, b) = ((y0 - o.y) / d.y, (y1 - o.y) / d.y);
+        lo = lo.max(a.min(b));
+        hi = hi.min(a.max(b));
+    }
+    if lo > hi {
+        return None;
+    }
+    // Radius: the squared distance from the axis is a convex quadratic in t.
+    let (r0, r1) = ((span.r.0 - pad).max(0.0), span.r.1 + pad);
+    let a = d.x * d.x + d.z * d.z;
+    let b = o.x * d.x + o.z * d.z;
+    let c = o.x * o.x + o.z * o.z;
+    let r2 = |t: f64| (a * t + 2.0 * b) * t + c;
+    if a == 0.0 {
+        if c > r1 * r1 || c < r0 * r0 {
+            return None;
+        }
+    } else {
+        let disc = b * b - a * (c - r1 * r1);
+        if disc < 0.0 {
+            return None;
+        }
+        let s = disc.sqrt();
+        lo = lo.max((-b - s) / a);
+        hi = hi.min((-b + s) / a);
+        if lo > hi {
+            return None;
+        }
+        // Convex: if both ends are inside the inner radius, all of it is.
+        if r2(lo) < r0 * r0 && r2(hi) < r0 * r0 {
+            return None;
+        }
+    }
+    Some(lo)
+}
