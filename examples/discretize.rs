@@ -12,8 +12,12 @@
 //! polygons, the uniform samples and the flattened polylines. It prints what it
 //! wrote and the flattening's certified bound.
 
+#[path = "common/profiles.rs"]
+mod profiles;
+
+use profiles::{vase, wine_glass};
 use revolve::nalgebra::Point2;
-use revolve::{BSpline, Bezier, Curve, CurveSample, Error, Flattening};
+use revolve::{Curve, CurveSample, Flattening};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -57,49 +61,6 @@ fn parse_args() -> Result<Options, String> {
         }
     }
     Ok(options)
-}
-
-/// The wine-glass profile of the course scenes (x = radius, y = height), with
-/// repeated control points on the axis at the foot and the bowl's centre.
-fn wine_glass() -> Result<BSpline<2>, Error> {
-    let controls = [
-        (0.0, -1.0),
-        (0.0, -1.0),
-        (0.0, -1.0),
-        (0.6, -1.0),
-        (0.7, -0.95),
-        (0.3, -0.9),
-        (0.08, -0.8),
-        (0.06, -0.5),
-        (0.06, -0.1),
-        (0.1, 0.0),
-        (0.5, 0.1),
-        (0.7, 0.4),
-        (0.75, 0.8),
-        (0.72, 1.0),
-        (0.7, 1.02),
-        (0.68, 0.8),
-        (0.6, 0.45),
-        (0.35, 0.25),
-        (0.1, 0.2),
-        (0.0, 0.2),
-        (0.0, 0.2),
-        (0.0, 0.2),
-    ];
-    BSpline::uniform(
-        3,
-        controls.iter().map(|&(x, y)| Point2::new(x, y)).collect(),
-    )
-}
-
-/// A vase as one cubic Bézier.
-fn vase() -> Result<Bezier<2>, Error> {
-    Bezier::new(vec![
-        Point2::new(0.6, -1.0),
-        Point2::new(1.6, -0.4),
-        Point2::new(-0.2, 0.6),
-        Point2::new(0.5, 1.0),
-    ])
 }
 
 fn samples_csv(samples: &[CurveSample<2>]) -> String {

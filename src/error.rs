@@ -94,6 +94,9 @@ pub enum Error {
         /// The interval it must lie in (inclusive).
         domain: (f64, f64),
     },
+    /// The operation needs a piecewise polynomial curve (one that provides
+    /// [`Curve::bezier_spans`](crate::Curve::bezier_spans)).
+    NotPiecewisePolynomial,
     /// An output buffer is too short.
     BufferLength {
         /// The number of entries needed.
@@ -183,6 +186,11 @@ impl fmt::Display for Error {
                 Num(t),
                 Num(domain.0),
                 Num(domain.1)
+            ),
+            Error::NotPiecewisePolynomial => write!(
+                f,
+                "this needs a piecewise polynomial profile (Bézier spans), as Bezier and \
+                 BSpline are"
             ),
             Error::BufferLength { expected, found } => write!(
                 f,

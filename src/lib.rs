@@ -70,7 +70,7 @@ pub use aabb::Aabb;
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
 pub use ray::{Hit, Intersect, Ray, Tolerance};
-pub use surface::{Revolution, Surface};
+pub use surface::{Mesh, Revolution, Surface};
 
 /// The README's code blocks, compiled and run as doctests.
 #[cfg(doctest)]

@@ -1,7 +1,9 @@
 //! Parametric surfaces: the [`Surface`] trait and surfaces of revolution.
 
+mod mesh;
 mod revolution;
 
+pub use mesh::Mesh;
 pub use revolution::Revolution;
 
 use nalgebra::{Point3, Unit, Vector3};

@@ -1,0 +1,156 @@
+//! Triangle meshes of surfaces of revolution with a deviation bound, and OBJ
+//! export.
+//!
+//! The profile is flattened adaptively ([`Flattening`](crate::Flattening)) so
+//! that each profile piece lies within `ε_p` of its chord, and the angle is cut
+//! into `N` equal steps so that a circle of the largest radius `R` lies within
+//! its sagitta `R(1 − cos(π/N))` of its chords. Between two profile samples and
+//! two angles the surface patch lies within `ε_p` of the patch swept by the
+//! chord (a piece of a cone), and that piece of cone lies within the sagitta
+//! of the planar isosceles trapezoid through its four corners, which the mesh
+//! covers with two triangles. So every surface point is within
+//!
+//! `bound = ε_p + R(1 − cos(π/N))`
+//!
+//! of the mesh; the tolerance is split evenly between the two terms.
+
+use crate::curve::flatten_pieces;
+use crate::{Curve, Error, Revolution, Surface};
+use nalgebra::{Point3, Unit, Vector3};
+use std::f64::consts::{PI, TAU};
+use std::io::{self, Write};
+
+/// The most angular steps [`Revolution::tessellate`] uses.
+const MAX_ANGLE_STEPS: usize = 1 << 16;
+
+/// A triangle mesh with per-vertex normals and surface parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<Point3<f64>>,
+    /// Unit normals per vertex (the surface's orientation).
+    pub normals: Vec<Unit<Vector3<f64>>>,
+    /// Surface parameters `(u, v)` per vertex.
+    pub uvs: Vec<(f64, f64)>,
+    /// Triangles as vertex indices `[a, b, c]`, ordered so that
+    /// `(b − a) × (c − a)` points along the surface normal.
+    pub triangles: Vec<[u32; 3]>,
+    /// Every point of the surface lies within `bound` of the mesh.
+    pub bound: f64,
+}
+
+impl Mesh {
+    /// Writes the mesh as Wavefront OBJ (`v`, `vt`, `vn` and `f v/vt/vn`
+    /// lines; indices are 1-based). `vt` holds the surface parameters
+    /// `(u, v)` as they are (not normalized to `[0, 1]`).
+    pub fn write_obj(&self, out: &mut impl Write) -> io::Result<()> {
+        writeln!(
+            out,
+            "# revolve mesh: {} vertices, {} triangles",
+            self.positions.len(),
+            self.triangles.len()
+        )?;
+        writeln!(out, "# deviation bound {:e}", self.bound)?;
+        for p in &self.positions {
+            writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
+        }
+        for (u, v) in &self.uvs {
+            writeln!(out, "vt {u} {v}")?;
+        }
+        for n in &self.normals {
+            writeln!(out, "vn {} {} {}", n.x, n.y, n.z)?;
+        }
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| i + 1);
+            writeln!(out, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
+        }
+        Ok(())
+    }
+}
+
+impl<C: Curve<2>> Revolution<C> {
+    /// A triangle mesh within `tolerance` of the surface (see the module
+    /// docs for the bound, which the mesh reports in [`Mesh::bound`]).
+    ///
+    /// Vertices on the axis (poles) are shared by their ring; triangles that
+    /// collapse there are left out. The seam `θ = 0 ≡ 2π` has duplicate
+    /// vertices so that `(u, v)` stay continuous.
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] or [`Error::ToleranceTooSmall`] as for
+    /// flattening; [`Error::NotPiecewisePolynomial`] for a profile without
+    /// [Bézier spans](Curve::bezier_spans) (no certified bound is possible).
+    pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(Error::InvalidTolerance { tolerance });
+        }
+        let spans = self
+            .profile()
+            .bezier_spans()
+            .ok_or(Error::NotPiecewisePolynomial)?;
+        let flat = flatten_pieces(
+            self.profile(),
+            spans.iter().map(|s| (s.curve.points(), s.knots)),
+            0.5 * tolerance,
+        )?;
+        let r_max = spans
+            .iter()
+            .flat_map(|s| s.curve.points())
+            .fold(0.0_f64, |m, p| m.max(p.x.abs()));
+        // Smallest N with R(1 − cos(π/N)) ≤ tolerance/2.
+        let steps = if r_max == 0.0 {
+            3
+        } else {
+            let half = (1.0 - 0.5 * tolerance / r_max).clamp(-1.0, 1.0).acos();
+            ((PI / half).ceil() as usize).clamp(3, MAX_ANGLE_STEPS)
+        };
+        let sagitta = r_max * (1.0 - (PI / steps as f64).cos());
+        let columns = steps + 1;
+        let rings = flat.samples.len();
+        let mut mesh = Mesh {
+            positions: Vec::with_capacity(rings * columns),
+            normals: Vec::with_capacity(rings * columns),
+            uvs: Vec::with_capacity(rings * columns),
+            triangles: Vec::new(),
+            bound: flat.bound + sagitta,
+        };
+        for sample in &flat.samples {
+            for j in 0..columns {
+                let theta = if j == steps {
+                    TAU
+                } else {
+                    TAU * j as f64 / steps as f64
+                };
+                let u = sample.t;
+                mesh.positions.push(self.eval(u, theta));
+                let n = self
+                    .normal(u, theta)
+                    // No tangent plane (an apex): the axis direction is the
+                    // best vertex normal there.
+                    .unwrap_or_else(|| {
+                        Unit::new_unchecked(self.to_world().rotation * Vector3::y())
+                    });
+                mesh.normals.push(n);
+                mesh.uvs.push((u, theta));
+            }
+        }
+        let index = |i: usize, j: usize| (i * columns + j) as u32;
+        for i in 0..rings - 1 {
+            let lower_on_axis = flat.samples[i].point.x == 0.0;
+            let upper_on_axis = flat.samples[i + 1].point.x == 0.0;
+            for j in 0..steps {
+                let (a, b) = (index(i, j), index(i, j + 1));
+                let (c, d) = (index(i + 1, j), index(i + 1, j + 1));
+                // Orientation: (∂S/∂u) × (∂S/∂θ) is the normal, so a triangle
+                // (u, θ) → (u + du, θ) → (u, θ + dθ) follows it.
+                if !lower_on_axis {
+                    mesh.triangles.push([a, c, b]);
+                }
+                if !upper_on_axis {
+                    mesh.triangles.push([b, c, d]);
+                }
+            }
+        }
+        Ok(mesh)
+    }
+}
