@@ -59,6 +59,8 @@ pub mod ray;
 pub mod roots;
 mod scratch;
 pub mod surface;
+#[cfg(feature = "testing")]
+pub mod testing;
 
 /// The largest control-point coordinate or knot magnitude accepted (`1e100`).
 ///

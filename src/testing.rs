@@ -1,0 +1,310 @@
+//! Test support for downstream crates (feature `testing`): proptest
+//! strategies for curves, profiles and rays, and law checkers for your own
+//! [`Curve`] and [`Surface`] types.
+//!
+//! ```
+//! use proptest::prelude::*;
+//! use revolve::testing::{bspline_curve, check_curve_derivatives};
+//!
+//! proptest!(|(curve in bspline_curve::<2>(0..=5, 1.0))| {
+//!     prop_assert!(check_curve_derivatives(&curve, 16).is_ok());
+//! });
+//! ```
+//!
+//! The checkers compare analytic derivatives with central differences
+//! `(f(t + h) − f(t − h))/2h` with `h = √ε·L` (`L` the parameter range). The
+//! rounding error `ε|f|/h` is then about `1.5e-8·|f|/L`; the truncation error
+//! is `h²|f‴|/6` where `f` is smooth and `h·|Δf″|/4` at a knot where the second
+//! derivative jumps (splines of low degree), again about `1e-8` of the scale.
+//! The checkers accept `1e-6` of the larger of the derivative's magnitude and
+//! `|f|/L`, which a wrong derivative (a wrong factor, a missing term) misses
+//! by orders of magnitude while correct ones pass with a wide margin.
+
+use crate::{BSpline, Bezier, Curve, Ray, Surface};
+use nalgebra::{Point, Point2, Point3, SVector, Vector3};
+use proptest::prelude::*;
+use std::fmt;
+use std::ops::RangeInclusive;
+
+/// A law a curve or surface broke, with where and by how much.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LawViolation {
+    /// Which law.
+    pub law: &'static str,
+    /// The parameters where it failed.
+    pub at: Vec<f64>,
+    /// The difference found and the limit it exceeded.
+    pub error: f64,
+    /// The limit.
+    pub limit: f64,
+}
+
+impl fmt::Display for LawViolation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} violated at {:?}: error {:e} exceeds {:e}",
+            self.law, self.at, self.error, self.limit
+        )
+    }
+}
+
+impl std::error::Error for LawViolation {}
+
+/// A point with coordinates in `[−scale, scale]`.
+pub fn point<const D: usize>(scale: f64) -> impl Strategy<Value = Point<f64, D>> {
+    proptest::array::uniform::<_, D>(-scale..=scale).prop_map(|c| Point::from(SVector::from(c)))
+}
+
+/// A Bézier curve with a degree in `degrees` and coordinates in
+/// `[−scale, scale]`.
+pub fn bezier_curve<const D: usize>(
+    degrees: RangeInclusive<usize>,
+    scale: f64,
+) -> impl Strategy<Value = Bezier<D>> {
+    degrees
+        .prop_flat_map(move |n| proptest::collection::vec(point::<D>(scale), n + 1))
+        .prop_map(|pts| Bezier::new(pts).unwrap_or_else(|_| unreachable!("finite points")))
+}
+
+/// A B-spline with a degree in `degrees`, `degree + 1 … degree + 8` control
+/// points with coordinates in `[−scale, scale]`, and a random valid knot
+/// vector: distinct interior knots with random spacing, and ends either
+/// clamped (`degree + 1` equal knots) or spaced like the interior (so the
+/// curve is smooth on its whole domain and its derivatives can be checked
+/// anywhere).
+pub fn bspline_curve<const D: usize>(
+    degrees: RangeInclusive<usize>,
+    scale: f64,
+) -> impl Strategy<Value = BSpline<D>> {
+    degrees
+        .prop_flat_map(move |p| {
+            (
+                Just(p),
+                proptest::collection::vec(point::<D>(scale), p + 1..=p + 8),
+            )
+        })
+        .prop_flat_map(|(p, pts)| {
+            let n = pts.len();
+            let gaps = proptest::collection::vec(0.1..1.0f64, n + p);
+            (Just(p), Just(pts), gaps, any::<bool>())
+        })
+        .prop_map(|(p, pts, gaps, clamped)| {
+            let mut knots = Vec::with_capacity(gaps.len() + 1);
+            let mut t = 0.0;
+            knots.push(t);
+            for g in gaps {
+                t += g;
+                knots.push(t);
+            }
+            if clamped {
+                let n = pts.len();
+                let (start, end) = (knots[p], knots[n]);
+                knots[..p].fill(start);
+                knots[n + 1..].fill(end);
+            }
+            BSpline::new(p, knots, pts).unwrap_or_else(|e| unreachable!("valid knots: {e}"))
+        })
+}
+
+/// A profile for a surface of revolution: a uniform B-spline of degree 2 or
+/// 3 (so its tangent is continuous) with 4–12 control points, `x ∈ [0.05, scale]`, heights strictly
+/// increasing (so the surface is a simple tube).
+pub fn profile(scale: f64) -> impl Strategy<Value = BSpline<2>> {
+    (2usize..=3, 4usize..=12)
+        .prop_flat_map(move |(p, n)| {
+            (
+                Just(p),
+                proptest::collection::vec((0.05 * scale..=scale, 0.05 * scale..=0.5 * scale), n),
+            )
+        })
+        .prop_map(|(p, rows)| {
+            let mut y = -0.5 * rows.iter().map(|r| r.1).sum::<f64>();
+            let pts = rows
+                .into_iter()
+                .map(|(x, dy)| {
+                    y += dy;
+                    Point2::new(x, y)
+                })
+                .collect();
+            BSpline::uniform(p, pts).unwrap_or_else(|e| unreachable!("valid profile: {e}"))
+        })
+}
+
+/// A ray from a point on a sphere of radius `3·scale` about the origin,
+/// aimed at a point in the cube `[−scale, scale]³`.
+pub fn ray(scale: f64) -> impl Strategy<Value = Ray> {
+    (
+        proptest::array::uniform3(-1.0..=1.0f64),
+        proptest::array::uniform3(-scale..=scale),
+    )
+        .prop_filter_map("direction away from zero", move |(from, to)| {
+            let v = Vector3::from(from);
+            let n = v.norm();
+            (n > 1e-3).then(|| {
+                let origin = Point3::from(v / n * 3.0 * scale);
+                Ray::new(origin, Point3::from(to) - origin)
+            })
+        })
+}
+
+/// Central difference of `f` at `t` with step `h`.
+fn central<const D: usize>(f: impl Fn(f64) -> SVector<f64, D>, t: f64, h: f64) -> SVector<f64, D> {
+    (f(t + h) - f(t - h)) / (2.0 * h)
+}
+
+/// Relative limit of the checkers (see the module docs).
+const LIMIT: f64 = 1e-6;
+
+/// Checks `Curve::derivative` against central differences of `Curve::eval`
+/// at `samples` parameters strictly inside the domain, and
+/// `eval_with_derivative` against both.
+///
+/// The limit is `1e-6 ×` the largest derivative magnitude sampled (plus the
+/// same of the point scale over the domain length). Curves whose derivative
+/// jumps (knots of high multiplicity) must be checked per smooth piece.
+pub fn check_curve_derivatives<const D: usize, C: Curve<D>>(
+    curve: &C,
+    samples: usize,
+) -> Result<(), LawViolation> {
+    let (a, b) = curve.domain();
+    let len = b - a;
+    let h = f64::EPSILON.sqrt() * len;
+    let ts: Vec<f64> = (0..samples)
+        .map(|i| a + len * (i as f64 + 0.5) / samples as f64)
+        .filter(|&t| t - h > a && t + h < b)
+        .collect();
+    let scale = ts.iter().fold(0.0_f64, |m, &t| {
+        m.max(curve.derivative(t).amax())
+            .max(curve.eval(t).coords.amax() / len)
+    });
+    let limit = LIMIT * scale.max(f64::MIN_POSITIVE);
+    for &t in &ts {
+        let fd = central(|s| curve.eval(s).coords, t, h);
+        let d = curve.derivative(t);
+        let error = (fd - d).amax();
+        if !(error <= limit) {
+            return Err(LawViolation {
+                law: "derivative = central difference of eval",
+                at: vec![t],
+                error,
+                limit,
+            });
+        }
+        let (p, d2) = curve.eval_with_derivative(t);
+        let error = (p - curve.eval(t)).amax().max((d2 - d).amax());
+        if !(error <= limit) {
+            return Err(LawViolation {
+                law: "eval_with_derivative = (eval, derivative)",
+                at: vec![t],
+                error,
+                limit,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks `Surface::partials` against central differences of `Surface::eval`
+/// on an `n × n` grid strictly inside the domain.
+pub fn check_surface_partials<S: Surface>(surface: &S, n: usize) -> Result<(), LawViolation> {
+    let [(u0, u1), (v0, v1)] = surface.domain();
+    let (hu, hv) = (
+        f64::EPSILON.sqrt() * (u1 - u0),
+        f64::EPSILON.sqrt() * (v1 - v0),
+    );
+    let grid = grid(surface, n);
+    let scale = grid.iter().fold(0.0_f64, |m, &(u, v)| {
+        let (su, sv) = surface.partials(u, v);
+        let p = surface.eval(u, v).coords.amax();
+        m.max(su.amax())
+            .max(sv.amax())
+            .max(p / (u1 - u0))
+            .max(p / (v1 - v0))
+    });
+    let limit = LIMIT * scale.max(f64::MIN_POSITIVE);
+    for &(u, v) in &grid {
+        if u - hu <= u0 || u + hu >= u1 || v - hv <= v0 || v + hv >= v1 {
+            continue;
+        }
+        let (su, sv) = surface.partials(u, v);
+        let fu = central(|s| surface.eval(s, v).coords, u, hu);
+        let fv = central(|s| surface.eval(u, s).coords, v, hv);
+        let error = (fu - su).amax().max((fv - sv).amax());
+        if !(error <= limit) {
+            return Err(LawViolation {
+                law: "partials = central differences of eval",
+                at: vec![u, v],
+                error,
+                limit,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks `Surface::normal` on an `n × n` grid: unit length, perpendicular
+/// to both partials, and along `∂S/∂u × ∂S/∂v` where that is not tiny.
+pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), LawViolation> {
+    for (u, v) in grid(surface, n) {
+        let (su, sv) = surface.partials(u, v);
+        let cross = su.cross(&sv);
+        let Some(normal) = surface.normal(u, v) else {
+            if cross.norm() > 1e-8 * su.norm() * sv.norm() {
+                return Err(LawViolation {
+                    law: "normal exists where the partials span a plane",
+                    at: vec![u, v],
+                    error: cross.norm(),
+                    limit: 1e-8 * su.norm() * sv.norm(),
+                });
+            }
+            continue;
+        };
+        let checks = [
+            ("normal has unit length", (normal.norm() - 1.0).abs(), 1e-12),
+            (
+                "normal ⟂ ∂S/∂u",
+                normal.dot(&su).abs(),
+                1e-9 * su.norm().max(1.0),
+            ),
+            (
+                "normal ⟂ ∂S/∂v",
+                normal.dot(&sv).abs(),
+                1e-9 * sv.norm().max(1.0),
+            ),
+        ];
+        for (law, error, limit) in checks {
+            if !(error <= limit) {
+                return Err(LawViolation {
+                    law,
+                    at: vec![u, v],
+                    error,
+                    limit,
+                });
+            }
+        }
+        let c = cross.norm();
+        if c > 1e-6 * su.norm() * sv.norm() {
+            let error = (cross / c - normal.into_inner()).norm();
+            if !(error <= 1e-9) {
+                return Err(LawViolation {
+                    law: "normal along ∂S/∂u × ∂S/∂v",
+                    at: vec![u, v],
+                    error,
+                    limit: 1e-9,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// An `n × n` grid of cell centres of the domain.
+fn grid<S: Surface>(surface: &S, n: usize) -> Vec<(f64, f64)> {
+    let [(u0, u1), (v0, v1)] = surface.domain();
+    let n = n.max(1);
+    let at = |lo: f64, hi: f64, i: usize| lo + (hi - lo) * (i as f64 + 0.5) / n as f64;
+    (0..n)
+        .flat_map(|i| (0..n).map(move |j| (at(u0, u1, i), at(v0, v1, j))))
+        .collect()
+}
