@@ -23,7 +23,7 @@
 //! best hit is nearer than the next span.
 
 use crate::bernstein::{binomial, eval_with_derivative};
-use crate::roots::{Root, find_roots};
+use crate::roots::{Root, find_roots_to};
 use crate::scratch::with_scratch;
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Matrix3, Point3, Vector3};
@@ -31,6 +31,76 @@ use std::f64::consts::TAU;
 
 /// Spans visited in sorted order; more than this are visited after, unsorted.
 const SORTED_SPANS: usize = 64;
+
+/// Root pieces narrower than this (in a span's parameter) are handed to
+/// Newton's method as candidates instead of being split further: from there
+/// Newton on the unsquared system converges, and near-tangent rays (double
+/// roots) do not drive the subdivision to the bottom.
+const CANDIDATE_WIDTH: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Candidates stored per span before sorting; more are polished unsorted.
+const MAX_CANDIDATES: usize = 16;
+
+/// The candidate hits `(t, s)` of one span, on the stack.
+struct Candidates {
+    items: [(f64, f64); MAX_CANDIDATES],
+    len: usize,
+    /// Candidates beyond the capacity, kept in order of discovery.
+    spill: Vec<(f64, f64)>,
+}
+
+impl Default for Candidates {
+    fn default() -> Self {
+        Candidates {
+            items: [(0.0, 0.0); MAX_CANDIDATES],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+}
+
+impl Candidates {
+    fn push(&mut self, t: f64, s: f64) {
+        if !t.is_finite() {
+            return;
+        }
+        if self.len < MAX_CANDIDATES {
+            self.items[self.len] = (t, s);
+            self.len += 1;
+        } else {
+            self.spill.push((t, s));
+        }
+    }
+
+    /// Sorts by `t` (insertion sort: there are few).
+    fn sort(&mut self) {
+        if !self.spill.is_empty() {
+            // Rare: many roots. Merge everything on the heap.
+            let mut all: Vec<_> = self.items[..self.len].to_vec();
+            all.append(&mut self.spill);
+            all.sort_by(|a, b| a.0.total_cmp(&b.0));
+            self.spill = all;
+            self.len = 0;
+            return;
+        }
+        let items = &mut self.items[..self.len];
+        for i in 1..items.len() {
+            let mut j = i;
+            while j > 0 && items[j - 1].0 > items[j].0 {
+                items.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+    }
+
+    fn as_slice(&self) -> &[(f64, f64)] {
+        if self.len == 0 {
+            &self.spill
+        } else {
+            &self.items[..self.len]
+        }
+    }
+}
 
 /// Hits whose Newton residual is within `max(tolerance, ACCEPT) × scale` are
 /// accepted; farther candidates are misses.
@@ -210,6 +280,10 @@ impl SpanTable {
     }
 
     /// Finds the hits of span `k` and keeps the nearest in `best`.
+    ///
+    /// The roots become candidates `(t, s)`; they are polished nearest first,
+    /// and candidates whose guessed `t` is beyond the best hit so far (with
+    /// slack for the guess's error) are not polished at all.
     fn span_hits(
         &self,
         k: usize,
@@ -218,15 +292,7 @@ impl SpanTable {
         t_best: &mut f64,
         best: &mut Option<LocalHit>,
     ) {
-        let mut consider = |s: f64, t_guess: f64| {
-            if let Some(hit) = self.polish(k, q, s, t_guess) {
-                if hit.t > t_floor && hit.t < *t_best {
-                    *t_best = hit.t;
-                    *best = Some(hit);
-                }
-            }
-        };
-        let n2 = 2 * self.degree + 1;
+        let mut cands = Candidates::default();
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y.
             let (_, ys) = self.coeffs(k);
@@ -236,26 +302,44 @@ impl SpanTable {
                     *gi = y - q.o.y;
                     err = err.max(2.0 * f64::EPSILON * (y.abs() + q.o.y.abs()));
                 }
-                find_roots(g, err, |root| {
+                find_roots_to(g, err, CANDIDATE_WIDTH, |root| {
                     for s in root_samples(root) {
                         for t in self.radius_times(k, q, s) {
-                            consider(s, t);
+                            cands.push(t, s);
                         }
                     }
                 });
             });
-            return;
-        }
-        with_scratch(n2, 0.0, |f| {
-            let err = self.span_polynomial(k, q, f);
-            find_roots(f, err, |root| {
-                for s in root_samples(root) {
-                    for t in self.candidate_times(k, q, s) {
-                        consider(s, t);
+        } else {
+            with_scratch(2 * self.degree + 1, 0.0, |f| {
+                let err = self.span_polynomial(k, q, f);
+                find_roots_to(f, err, CANDIDATE_WIDTH, |root| {
+                    for s in root_samples(root) {
+                        for t in self.candidate_times(k, q, s) {
+                            cands.push(t, s);
+                        }
                     }
-                }
+                });
             });
-        });
+        }
+        // A guess can be off by the root's uncertainty: allow a margin of
+        // the object's size along the ray before skipping a candidate.
+        let slack = 1e-3 * self.scale / q.d.norm();
+        cands.sort();
+        for &(t, s) in cands.as_slice() {
+            if t > *t_best + slack {
+                break;
+            }
+            if t < t_floor - slack {
+                continue;
+            }
+            if let Some(hit) = self.polish(k, q, s, t) {
+                if hit.t > t_floor && hit.t < *t_best {
+                    *t_best = hit.t;
+                    *best = Some(hit);
+                }
+            }
+        }
     }
 
     /// Writes the `2n + 1` Bernstein coefficients of `f` for span `k` into
@@ -267,31 +351,33 @@ impl SpanTable {
         let (o, d) = (q.o, q.d);
         let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
         f.fill(0.0);
-        // aᵢ, bᵢ, cᵢ and their magnitude bounds (for the rounding bound).
-        with_scratch(6 * w, 0.0, |buf| {
-            let (abc, mags) = buf.split_at_mut(3 * w);
+        // aᵢ, bᵢ, cᵢ, and the largest magnitudes of the terms that form
+        // them (for the rounding bound).
+        with_scratch(3 * w, 0.0, |abc| {
+            let (mut ma, mut mb, mut mc) = (0.0_f64, 0.0_f64, 0.0_f64);
             for i in 0..w {
                 let h = ys[i] - o.y;
                 abc[3 * i] = oxdy + h * d.x;
                 abc[3 * i + 1] = ozdy + h * d.z;
                 abc[3 * i + 2] = d.y * xs[i];
-                mags[3 * i] = oxdy.abs() + (h * d.x).abs();
-                mags[3 * i + 1] = ozdy.abs() + (h * d.z).abs();
-                mags[3 * i + 2] = abc[3 * i + 2].abs();
+                ma = ma.max(oxdy.abs() + (h * d.x).abs());
+                mb = mb.max(ozdy.abs() + (h * d.z).abs());
+                mc = mc.max(abc[3 * i + 2].abs());
             }
-            let mut bound = 0.0_f64;
+            // f_k = Σ_{i+j=k} wᵢⱼ (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ), symmetric in i, j.
             for i in 0..w {
-                let (a, m) = (&abc[3 * i..3 * i + 3], &mags[3 * i..3 * i + 3]);
-                for j in 0..w {
-                    let (b, mj) = (&abc[3 * j..3 * j + 3], &mags[3 * j..3 * j + 3]);
-                    let weight = self.weights[i * w + j];
-                    f[i + j] += weight * (a[0] * b[0] + a[1] * b[1] - a[2] * b[2]);
-                    bound = bound.max(weight * (m[0] * mj[0] + m[1] * mj[1] + m[2] * mj[2]));
+                let (ai, bi, ci) = (abc[3 * i], abc[3 * i + 1], abc[3 * i + 2]);
+                f[2 * i] += self.weights[i * w + i] * (ai * ai + bi * bi - ci * ci);
+                for j in i + 1..w {
+                    let (aj, bj, cj) = (abc[3 * j], abc[3 * j + 1], abc[3 * j + 2]);
+                    f[i + j] += 2.0 * self.weights[i * w + j] * (ai * aj + bi * bj - ci * cj);
                 }
             }
-            // Inputs carry up to 3ε relative error each; products, the three
-            // terms and the n + 1 sums add the rest: (4n + 16)ε per term.
-            (4 * n + 16) as f64 * f64::EPSILON * bound * w as f64
+            // Σ_{i+j=k} wᵢⱼ = 1 (Vandermonde), so every coefficient is a
+            // weighted mean of terms bounded by ma² + mb² + mc². The inputs
+            // carry up to 3ε relative error, products and the three terms
+            // add 3ε, the n + 1 sums (n + 1)ε: (n + 8)ε covers them.
+            (n + 8) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
         })
     }
 
