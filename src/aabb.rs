@@ -92,6 +92,9 @@ impl Aabb {
     /// ray is then inside that slab for all `t` or for none. The comparisons
     /// are arranged so that a NaN from `0 · ∞` never passes as a hit.
     pub fn clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        if self.is_empty() {
+            return None;
+        }
         let (mut lo, mut hi) = (t_min, t_max);
         for i in 0..3 {
             let (o, d) = (ray.origin[i], ray.dir[i]);
