@@ -71,7 +71,9 @@ pub const MAX_COORDINATE: f64 = 1e100;
 pub use aabb::Aabb;
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
+pub use ray::newton::{NewtonIntersector, NewtonReport};
 pub use ray::{Hit, Intersect, Ray, Tolerance};
+pub use surface::BoundedSurface;
 pub use surface::{Mesh, Revolution, Surface};
 
 /// The README's code blocks, compiled and run as doctests.

@@ -5,7 +5,10 @@
 //! the caller's normalization convention, and `t_min`/`t_max` are in the same
 //! units.
 
+pub mod newton;
 pub(crate) mod revolution;
+
+pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 
 use crate::Aabb;
 use nalgebra::{Point3, Unit, Vector3};

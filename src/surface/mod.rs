@@ -6,6 +6,7 @@ mod revolution;
 pub use mesh::Mesh;
 pub use revolution::Revolution;
 
+use crate::Aabb;
 use nalgebra::{Point3, Unit, Vector3};
 
 /// A parametric surface `S(u, v)` on a parameter rectangle.
@@ -33,5 +34,61 @@ pub trait Surface {
     fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
         let (su, sv) = self.partials(u, v);
         Unit::try_new(su.cross(&sv), 0.0)
+    }
+}
+
+/// A [`Surface`] that can bound the image of any parameter rectangle: what
+/// the generic Newton intersector ([`NewtonIntersector`]) needs to seed its
+/// iterations from a tree of patches.
+///
+/// [`NewtonIntersector`]: crate::ray::newton::NewtonIntersector
+///
+/// # Contract
+/// [`bound_patch`](Self::bound_patch) is *conservative*: the box contains
+/// `S(u, v)` for every `(u, v)` in the rectangle (up to the rounding of
+/// [`eval`](Surface::eval), which implementors pad for). A box that is too
+/// large only costs time; one that is too small makes ray casters miss hits.
+pub trait BoundedSurface: Surface {
+    /// A box containing `S([u₀, u₁] × [v₀, v₁])`, for `u = (u₀, u₁)` and
+    /// `v = (v₀, v₁)` with `u₀ ≤ u₁`, `v₀ ≤ v₁` inside the
+    /// [domain](Surface::domain).
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb;
+
+    /// Which parameters are periodic, `[u, v]`: a periodic parameter may
+    /// leave its domain interval `(a, b)` and is taken modulo `b − a` (the
+    /// angle of a surface of revolution). The default is `[false, false]`:
+    /// both parameters are confined to their intervals.
+    fn periodic(&self) -> [bool; 2] {
+        [false, false]
+    }
+}
+
+/// A reference to a surface is the same surface, so that borrowing solvers
+/// (`NewtonIntersector<&S>`) work without cloning it.
+impl<S: Surface + ?Sized> Surface for &S {
+    fn domain(&self) -> [(f64, f64); 2] {
+        (**self).domain()
+    }
+
+    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        (**self).eval(u, v)
+    }
+
+    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        (**self).partials(u, v)
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        (**self).normal(u, v)
+    }
+}
+
+impl<S: BoundedSurface + ?Sized> BoundedSurface for &S {
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        (**self).bound_patch(u, v)
+    }
+
+    fn periodic(&self) -> [bool; 2] {
+        (**self).periodic()
     }
 }
