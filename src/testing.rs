@@ -153,6 +153,11 @@ fn central<const D: usize>(f: impl Fn(f64) -> SVector<f64, D>, t: f64, h: f64) -
     (f(t + h) - f(t - h)) / (2.0 * h)
 }
 
+/// Whether `error` is above `limit` or NaN (a NaN must fail a check).
+fn exceeds(error: f64, limit: f64) -> bool {
+    error.is_nan() || error > limit
+}
+
 /// Relative limit of the checkers (see the module docs).
 const LIMIT: f64 = 1e-6;
 
@@ -183,7 +188,7 @@ pub fn check_curve_derivatives<const D: usize, C: Curve<D>>(
         let fd = central(|s| curve.eval(s).coords, t, h);
         let d = curve.derivative(t);
         let error = (fd - d).amax();
-        if !(error <= limit) {
+        if exceeds(error, limit) {
             return Err(LawViolation {
                 law: "derivative = central difference of eval",
                 at: vec![t],
@@ -193,7 +198,7 @@ pub fn check_curve_derivatives<const D: usize, C: Curve<D>>(
         }
         let (p, d2) = curve.eval_with_derivative(t);
         let error = (p - curve.eval(t)).amax().max((d2 - d).amax());
-        if !(error <= limit) {
+        if exceeds(error, limit) {
             return Err(LawViolation {
                 law: "eval_with_derivative = (eval, derivative)",
                 at: vec![t],
@@ -231,7 +236,7 @@ pub fn check_surface_partials<S: Surface>(surface: &S, n: usize) -> Result<(), L
         let fu = central(|s| surface.eval(s, v).coords, u, hu);
         let fv = central(|s| surface.eval(u, s).coords, v, hv);
         let error = (fu - su).amax().max((fv - sv).amax());
-        if !(error <= limit) {
+        if exceeds(error, limit) {
             return Err(LawViolation {
                 law: "partials = central differences of eval",
                 at: vec![u, v],
@@ -274,7 +279,7 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
             ),
         ];
         for (law, error, limit) in checks {
-            if !(error <= limit) {
+            if exceeds(error, limit) {
                 return Err(LawViolation {
                     law,
                     at: vec![u, v],
@@ -286,7 +291,7 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
         let c = cross.norm();
         if c > 1e-6 * su.norm() * sv.norm() {
             let error = (cross / c - normal.into_inner()).norm();
-            if !(error <= 1e-9) {
+            if exceeds(error, 1e-9) {
                 return Err(LawViolation {
                     law: "normal along ∂S/∂u × ∂S/∂v",
                     at: vec![u, v],
