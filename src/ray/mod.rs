@@ -37,8 +37,10 @@ impl Ray {
 
 /// A ray–surface intersection.
 ///
-/// - `t`: the ray parameter, in units of `|dir|` (so `point = origin + t·dir`).
-/// - `point`: the hit point, on the surface to the solver's tolerance.
+/// - `t`: the ray parameter, in units of `|dir|`.
+/// - `point`: the surface point `S(uv)`; `origin + t·dir` lies within the
+///   solver's accepted residual of it (`max(tolerance, 1e-9) ×` the object's
+///   scale; after Newton's polish usually a few ulps).
 /// - `normal`: the surface's unit normal at the hit, oriented as the surface
 ///   defines it ([`Surface::normal`](crate::Surface::normal)), not flipped
 ///   toward the ray; compare its sign with `dir` to tell front from back.

@@ -66,6 +66,13 @@ impl<C: Curve<2>> Revolution<C> {
         self
     }
 
+    /// Whether [`Intersect`] runs the exact intersector on this surface (the
+    /// profile has Bézier spans of one degree); if not, use
+    /// [`NewtonIntersector`](crate::NewtonIntersector).
+    pub fn has_exact_intersector(&self) -> bool {
+        self.exact.is_some()
+    }
+
     /// The intersection accuracy.
     pub fn tolerance(&self) -> &Tolerance {
         &self.tolerance
@@ -180,9 +187,16 @@ pub(crate) fn world_bounds(to_world: &Isometry3<f64>, r: f64, y0: f64, y1: f64) 
 }
 
 impl<C: Curve<2>> Intersect for Revolution<C> {
-    /// The exact intersector (see the `ray` module): the nearest hit with
-    /// `t_min < t < t_max`, or `None`. Profiles without Bézier spans have no
-    /// exact intersector yet and report no hits.
+    /// The exact intersector: the nearest hit with `t_min < t < t_max`, or
+    /// `None`.
+    ///
+    /// It needs a profile with [Bézier spans](Curve::bezier_spans) of one
+    /// degree ([`Bezier`](crate::Bezier), [`BSpline`](crate::BSpline)); for
+    /// any other profile this reports no hits and empty bounds: intersect
+    /// such surfaces with [`NewtonIntersector`](crate::NewtonIntersector)
+    /// (`NewtonIntersector::new(&surface, depth)`), which only needs the
+    /// surface's patch bounds. [`Revolution::has_exact_intersector`] tells
+    /// which applies.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let exact = self.exact.as_ref()?;
         let o = self.to_world.inverse_transform_point(&ray.origin);
