@@ -121,6 +121,8 @@ pub(crate) struct SpanTable {
     pub(crate) y_range: (f64, f64),
     /// Largest absolute local coordinate: the scale of relative tolerances.
     pub(crate) scale: f64,
+    /// The profile's parameter domain (first span's start, last span's end).
+    domain: (f64, f64),
 }
 
 /// One profile span and its conservative ranges.
@@ -200,7 +202,9 @@ impl SpanTable {
                 (a.min(s.y.0), b.max(s.y.1))
             });
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
+        let domain = (table[0].u.0, table[table.len() - 1].u.1);
         Some(SpanTable {
+            domain,
             degree,
             spans: table,
             xs,
@@ -474,19 +478,23 @@ impl SpanTable {
             r = r_new;
         }
         let (r, s, t, theta) = best;
+        // A hit at a span join may converge just past the span's end: the
+        // span's polynomial continued there differs from the neighbour's by
+        // far less than the tolerance, so the point is kept as Newton found
+        // it and only u is moved into the profile's domain.
         let slack = 1e-9;
         let accepted = r <= q.accept && (-slack..=1.0 + slack).contains(&s) && t.is_finite();
         if !accepted {
             return None;
         }
-        let s = s.clamp(0.0, 1.0);
         let (u0, u1) = self.spans[k].u;
         let (x, y, ..) = eval(s);
         let theta = theta.rem_euclid(TAU) + 0.0; // no −0
         let (sn, cs) = theta.sin_cos();
+        let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
         Some(LocalHit {
             t,
-            u: u0 + (u1 - u0) * s,
+            u,
             theta,
             point: Point3::new(x * cs, y, -x * sn),
         })
