@@ -379,7 +379,9 @@ impl<const D: usize> BSpline<D> {
     }
 
     /// Inserts the knot `t` `times` times (Boehm's algorithm); the curve is
-    /// unchanged, it gains `times` control points.
+    /// unchanged, it gains `times` control points. A `t` within rounding
+    /// (`4ε ×` the knot range) of an existing knot inserts that knot, so the
+    /// result always satisfies the rules of [`new`](Self::new).
     ///
     /// # Errors
     /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside the domain;
@@ -387,6 +389,15 @@ impl<const D: usize> BSpline<D> {
     /// `degree + 1` times.
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<BSpline<D>, Error> {
         check_in_domain(t, self.domain())?;
+        // A parameter closer to an existing knot than rounding can resolve
+        // (see `Error::KnotGapTooSmall`) is that knot.
+        let min_gap = 4.0 * f64::EPSILON * (self.knots[self.knots.len() - 1] - self.knots[0]);
+        let t = self
+            .knots
+            .iter()
+            .copied()
+            .find(|&k| (k - t).abs() < min_gap)
+            .unwrap_or(t);
         let existing = self.knots.iter().filter(|&&k| k == t).count();
         let multiplicity = existing.saturating_add(times);
         if multiplicity > self.degree + 1 {

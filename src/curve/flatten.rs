@@ -22,6 +22,11 @@ use nalgebra::{Point, SVector};
 /// Deepest subdivision: pieces narrower than `2⁻⁵⁰` of a span are not split.
 const MAX_DEPTH: u32 = 50;
 
+/// Spans whose end points differ by at most this multiple of the scale are
+/// joined continuously (the difference is rounding of their Bézier forms);
+/// larger differences are jumps and get a left-limit sample.
+const JOIN_ROUNDING: f64 = 8.0 * f64::EPSILON;
+
 /// Tolerances below this multiple of the largest control-point coordinate are
 /// rejected: rounding (about `1e-16` of the scale) would dominate the bound and
 /// the number of pieces would explode.
@@ -90,8 +95,9 @@ pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
         })?;
         let end = points[n - 1];
         let next_start = pieces.get(k + 1).map(|(p, _)| p[0]);
-        if next_start.is_some_and(|s| (s - end).norm() > tolerance) {
-            // A jump: close this piece with its limit from the left.
+        if next_start.is_some_and(|s| (s - end).norm() > JOIN_ROUNDING * acc.scale) {
+            // A jump (of any size beyond rounding): close this piece with its
+            // limit from the left, so the polyline follows the jump.
             let derivative = match n {
                 1 => SVector::zeros(),
                 _ => (end - points[n - 2]) * ((n - 1) as f64 / (b - a)),
@@ -126,7 +132,11 @@ fn refine<C: Curve<D>, const D: usize>(
     depth: u32,
 ) -> Result<(), Error> {
     let n = c.len();
-    let rounding = 2.0 * f64::EPSILON * acc.scale * n as f64 * f64::from(depth + 1);
+    // Rounding of the subdivided control points, plus the rounding gap a
+    // continuous join may show between two spans' end points (the polyline
+    // runs to the next span's start).
+    let rounding = 2.0 * f64::EPSILON * acc.scale * n as f64 * f64::from(depth + 1)
+        + JOIN_ROUNDING * acc.scale;
     let bound = hull_to_chord_distance(c) + rounding;
     if bound <= acc.tolerance {
         acc.bound = acc.bound.max(bound);
