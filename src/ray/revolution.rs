@@ -103,8 +103,17 @@ impl Candidates {
 }
 
 /// Hits whose Newton residual is within `max(tolerance, ACCEPT) × scale` are
-/// accepted; farther candidates are misses.
-const ACCEPT: f64 = 1e-9;
+/// accepted; farther candidates are misses. `scale` is the larger of the
+/// object's size and the ray origin's distance from the axis origin (the
+/// rounding of `o + t·d` grows with it). Newton from an isolated root
+/// reaches a few ulps of the scale, so `1e-12` accepts every hit while a
+/// ray that misses a silhouette by more than that is a miss.
+const ACCEPT: f64 = 1e-12;
+
+/// How far past its span's ends (in the span's parameter) Newton may land
+/// and still count: rounding only. A hit beyond belongs to the neighbour
+/// span, whose own roots find it.
+const SPAN_SLACK: f64 = 1e-12;
 
 /// The per-surface data of the exact intersector, computed once.
 #[derive(Debug, Clone, PartialEq)]
@@ -235,11 +244,14 @@ impl SpanTable {
         if !(dn > 0.0 && dn.is_finite()) || o.coords.iter().any(|c| !c.is_finite()) {
             return None;
         }
+        // The tolerance is relative to the object; the rounding floor also
+        // grows with the ray origin's distance.
         let scale = self.scale.max(f64::MIN_POSITIVE);
+        let floor = ACCEPT * scale.max(o.coords.amax());
         let q = Query {
             o: o.coords,
             d,
-            accept: tol.relative.max(ACCEPT) * scale,
+            accept: (tol.relative * scale).max(floor),
             target: tol.relative * scale,
             max_iterations: tol.max_iterations,
         };
@@ -477,12 +489,25 @@ impl SpanTable {
             }
             r = r_new;
         }
+        // On the axis (a pole or an apex) ∂S/∂θ vanishes and the Jacobian is
+        // singular, so Newton stalls a little off. There the hit is where the
+        // ray meets the axis point (0, y(s*), 0) with x(s*) = 0: solve that
+        // directly and keep it if it fits better.
+        if q.d.y != 0.0 && eval(best.1).0.abs() <= 1e-6 * self.scale {
+            if let Some(s_axis) = axis_root(xs, best.1) {
+                let (_, y, ..) = eval(s_axis);
+                let t_axis = (y - q.o.y) / q.d.y;
+                let r_axis = (q.o + q.d * t_axis - Vector3::new(0.0, y, 0.0)).norm();
+                if r_axis < best.0 {
+                    best = (r_axis, s_axis, t_axis, best.3);
+                }
+            }
+        }
         let (r, s, t, theta) = best;
-        // A hit at a span join may converge just past the span's end: the
-        // span's polynomial continued there differs from the neighbour's by
-        // far less than the tolerance, so the point is kept as Newton found
-        // it and only u is moved into the profile's domain.
-        let slack = 1e-9;
+        // A hit at a span join may converge a rounding error past the
+        // span's end: the point is kept as Newton found it and only u is
+        // moved into the profile's domain.
+        let slack = SPAN_SLACK;
         let accepted = r <= q.accept && (-slack..=1.0 + slack).contains(&s) && t.is_finite();
         if !accepted {
             return None;
@@ -499,6 +524,41 @@ impl SpanTable {
             point: Point3::new(x * cs, y, -x * sn),
         })
     }
+}
+
+/// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's
+/// method, kept within `±0.05` of `s0` and slightly beyond the span; `None`
+/// if it does not reach `|x| ≤ 4ε·max|xᵢ|`.
+fn axis_root(xs: &[f64], s0: f64) -> Option<f64> {
+    let scale = xs.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let (lo, hi) = (
+        (s0 - 0.05).max(-SPAN_SLACK),
+        (s0 + 0.05).min(1.0 + SPAN_SLACK),
+    );
+    let tol = 4.0 * f64::EPSILON * scale;
+    // Span ends on the axis are exact (repeated control points there give a
+    // root of high multiplicity that Newton only approaches).
+    for end in [0.0, 1.0] {
+        if (lo..=hi).contains(&end) && xs[if end == 0.0 { 0 } else { xs.len() - 1 }].abs() <= tol {
+            return Some(end);
+        }
+    }
+    let mut s = s0;
+    for _ in 0..64 {
+        let (x, dx) = eval_with_derivative(xs, s)?;
+        if x.abs() <= tol {
+            return Some(s);
+        }
+        if dx == 0.0 {
+            return None;
+        }
+        let next = s - x / dx;
+        if !(lo..=hi).contains(&next) || next == s {
+            return None;
+        }
+        s = next;
+    }
+    None
 }
 
 /// The parameters to try for one root report: the root itself, or the ends
@@ -574,7 +634,7 @@ fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> 
             return None;
         }
         // Convex: if both ends are inside the inner radius, all of it is.
-        if r2(lo) < r0 * r0 && r2(hi) < r0 * r0 {
+        if r0 > 0.0 && r2(lo) < r0 * r0 && r2(hi) < r0 * r0 {
             return None;
         }
     }

@@ -83,10 +83,18 @@ impl<C: Curve<2>> Revolution<C> {
     /// `origin`). The rotation is the shortest one taking `y` to `axis`; for
     /// `axis = −y` it is the half turn about `x`.
     pub fn with_axis(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
-        let y = Vector3::y_axis();
-        let rotation = Rotation3::rotation_between(&y, &axis).unwrap_or_else(|| {
-            Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
-        });
+        // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
+        // of the dot product loses half the digits there).
+        let y = Vector3::y();
+        let cross = y.cross(&axis);
+        let angle = cross.norm().atan2(y.dot(&axis));
+        let rotation = match Unit::try_new(cross, 0.0) {
+            Some(about) => Rotation3::from_axis_angle(&about, angle),
+            None if angle > 1.0 => {
+                Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
+            }
+            None => Rotation3::identity(),
+        };
         self.to_world = Isometry3::from_parts(
             Translation3::from(origin.coords),
             UnitQuaternion::from_rotation_matrix(&rotation),
