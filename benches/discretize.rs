@@ -8,9 +8,13 @@
 //!
 //! Run: `cargo bench --bench discretize` (CI: `cargo bench --bench discretize -- --test`).
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
+use common::helix_points;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::nalgebra::{Point2, Point3};
 use revolve::{BSpline, Bezier, Curve, Flattening};
@@ -19,28 +23,6 @@ const SEGMENTS: [usize; 3] = [16, 256, 4096];
 
 /// Tolerances 1e-2, 1e-3, …, 1e-8.
 const TOLERANCE_EXPONENTS: [i32; 7] = [2, 3, 4, 5, 6, 7, 8];
-
-/// A deterministic pseudo-random walk (SplitMix64-driven), coordinates of order 1.
-fn points3(count: usize, seed: u64) -> Vec<Point3<f64>> {
-    let mut state = seed;
-    let mut unit = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    };
-    (0..count)
-        .map(|i| {
-            let s = i as f64 / (count - 1) as f64;
-            Point3::new(
-                (6.0 * s).cos() + 0.6 * unit() - 0.3,
-                (6.0 * s).sin() + 0.6 * unit() - 0.3,
-                2.0 * s - 1.0 + 0.2 * unit() - 0.1,
-            )
-        })
-        .collect()
-}
 
 fn cubic_bezier_3d() -> Bezier<3> {
     Bezier::new(vec![
@@ -63,44 +45,9 @@ fn cubic_bezier_2d() -> Bezier<2> {
     .expect("valid cubic")
 }
 
-/// A wine-glass profile, (radius, height), 25 control points: foot, stem,
-/// bowl outside up to the rim, then the inside of the bowl back down to the
-/// axis.
-fn wine_glass() -> BSpline<2> {
-    let pts = [
-        (0.00, 0.00),
-        (0.00, 0.00),
-        (0.20, 0.00),
-        (0.35, 0.00),
-        (0.36, 0.02),
-        (0.30, 0.04),
-        (0.12, 0.06),
-        (0.05, 0.10),
-        (0.04, 0.25),
-        (0.04, 0.40),
-        (0.05, 0.50),
-        (0.12, 0.55),
-        (0.28, 0.62),
-        (0.38, 0.75),
-        (0.40, 0.90),
-        (0.36, 1.05),
-        (0.33, 1.15),
-        (0.34, 1.16),
-        (0.32, 1.15),
-        (0.36, 1.02),
-        (0.37, 0.88),
-        (0.34, 0.74),
-        (0.24, 0.63),
-        (0.00, 0.58),
-        (0.00, 0.58),
-    ];
-    let pts = pts.iter().map(|&(x, y)| Point2::new(x, y)).collect();
-    BSpline::uniform(3, pts).expect("valid profile")
-}
-
 fn discretize(c: &mut Criterion) {
     let bezier = cubic_bezier_3d();
-    let spline = BSpline::uniform(3, points3(100, 0x5EED)).expect("valid cubic B-spline");
+    let spline = BSpline::uniform(3, helix_points(100, 0x5EED)).expect("valid cubic B-spline");
 
     let mut group = c.benchmark_group("discretize_bezier_cubic");
     for segments in SEGMENTS {
@@ -150,7 +97,7 @@ fn bench_flatten<const D: usize>(
 fn flatten(c: &mut Criterion) {
     let bezier2 = cubic_bezier_2d();
     let bezier3 = cubic_bezier_3d();
-    let glass = wine_glass();
+    let glass = common::wine_glass();
     bench_flatten(c, "flatten_bezier_cubic_2d", |tol| {
         black_box(&bezier2).flatten(tol)
     });

@@ -12,12 +12,16 @@
 //!
 //! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 use std::hint::black_box;
 use std::time::Duration;
 
+use common::{Rng, helix_points};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
-use revolve::nalgebra::{Point3, Vector3};
+use revolve::nalgebra::Vector3;
 use revolve::{BSpline, Bezier, Curve};
 
 /// Number of precomputed parameters; a power of two so that cycling is a mask.
@@ -30,49 +34,9 @@ const DEGREES: [usize; 3] = [3, 7, 15];
 /// Control-point counts of the cubic B-splines benchmarked.
 const POINT_COUNTS: [usize; 3] = [10, 100, 1000];
 
-/// SplitMix64: a tiny deterministic generator, so runs are reproducible
-/// without a `rand` dependency.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)` (53 random bits).
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
-
-/// `count` deterministic control points: a wobbly helix-like walk with
-/// coordinates of order 1.
-fn points3(count: usize, seed: u64) -> Vec<Point3<f64>> {
-    let mut rng = SplitMix64(seed);
-    (0..count)
-        .map(|i| {
-            let s = i as f64 / count.max(2).saturating_sub(1) as f64;
-            Point3::new(
-                (6.0 * s).cos() + rng.range(-0.3, 0.3),
-                (6.0 * s).sin() + rng.range(-0.3, 0.3),
-                2.0 * s - 1.0 + rng.range(-0.1, 0.1),
-            )
-        })
-        .collect()
-}
-
 /// 1024 pseudo-random parameters in `[a, b)`.
 fn parameters((a, b): (f64, f64), seed: u64) -> Box<[f64; N_T]> {
-    let mut rng = SplitMix64(seed);
+    let mut rng = Rng(seed);
     let mut ts = Box::new([0.0; N_T]);
     for t in ts.iter_mut() {
         *t = rng.range(a, b);
@@ -100,11 +64,11 @@ impl<'a> Cycle<'a> {
 }
 
 fn bezier_curve(degree: usize) -> Bezier<3> {
-    Bezier::new(points3(degree + 1, 0xB2 + degree as u64)).expect("valid control points")
+    Bezier::new(helix_points(degree + 1, 0xB2 + degree as u64)).expect("valid control points")
 }
 
 fn cubic_bspline(points: usize) -> BSpline<3> {
-    BSpline::uniform(3, points3(points, 0x5B + points as u64)).expect("valid cubic B-spline")
+    BSpline::uniform(3, helix_points(points, 0x5B + points as u64)).expect("valid cubic B-spline")
 }
 
 /// Benches `f(curve, t)` as `group/label/param`, one parameter per iteration.
@@ -247,7 +211,7 @@ fn algorithms(c: &mut Criterion) {
     let mut group = c.benchmark_group("bezier_algorithms");
     group.throughput(Throughput::Elements(1));
     for degree in DEGREES {
-        let coeffs: Vec<Vector3<f64>> = points3(degree + 1, 0xA1 + degree as u64)
+        let coeffs: Vec<Vector3<f64>> = helix_points(degree + 1, 0xA1 + degree as u64)
             .into_iter()
             .map(|p| p.coords)
             .collect();

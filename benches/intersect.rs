@@ -15,58 +15,19 @@
 //! Run: `cargo bench --bench intersect` (CI: `-- --test`). The hit rate of
 //! every set is printed once.
 
-#[path = "../examples/common/profiles.rs"]
-mod profiles;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use std::hint::black_box;
 use std::time::Duration;
 
+use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Vector3};
 use revolve::{Aabb, Curve, Intersect, Ray, Revolution, Surface};
 
 const N_RAYS: usize = 1024;
 const MASK: usize = N_RAYS - 1;
-
-/// SplitMix64, for reproducible ray sets without a `rand` dependency.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    /// A uniform direction.
-    fn direction(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-
-    fn point_in(&mut self, b: &Aabb) -> Point3<f64> {
-        Point3::new(
-            self.range(b.min.x, b.max.x),
-            self.range(b.min.y, b.max.y),
-            self.range(b.min.z, b.max.z),
-        )
-    }
-}
 
 /// Rays from a sphere around `b` through random points of `b`; with
 /// `perpendicular`, the direction's y component is zero (axis = y).
@@ -166,8 +127,8 @@ fn bench_surface<S: Surface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
 }
 
 fn benches(c: &mut Criterion) {
-    let vase = Revolution::new(profiles::vase().expect("valid vase"));
-    let glass_profile = profiles::wine_glass().expect("valid wine glass");
+    let vase = Revolution::new(common::vase());
+    let glass_profile = common::wine_glass();
     eprintln!(
         "wine glass: {} control points, {} spans",
         glass_profile.points().len(),

@@ -12,10 +12,10 @@
 //! polygons, the uniform samples and the flattened polylines. It prints what it
 //! wrote and the flattening's certified bound.
 
-#[path = "common/profiles.rs"]
-mod profiles;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
-use profiles::{vase, wine_glass};
+use common::{vase, wine_glass};
 use revolve::nalgebra::Point2;
 use revolve::{Curve, CurveSample, Flattening};
 use std::fmt::Write as _;
@@ -134,8 +134,8 @@ fn svg(curves: &[Drawn]) -> String {
 }
 
 fn run(options: &Options) -> Result<(), String> {
-    let glass = wine_glass().map_err(|e| format!("wine glass: {e}"))?;
-    let vase = vase().map_err(|e| format!("vase: {e}"))?;
+    let glass = wine_glass();
+    let vase = vase();
     let curves = [
         Drawn {
             name: "wine_glass",

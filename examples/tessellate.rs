@@ -10,8 +10,8 @@
 //! curve instead). The mesh is within the tolerance of the surface; the bound
 //! it achieved is printed and written into the OBJ header.
 
-#[path = "common/profiles.rs"]
-mod profiles;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use revolve::nalgebra::Point2;
 use revolve::{BSpline, Bezier, Mesh, Revolution};
@@ -88,10 +88,8 @@ fn read_points(path: &str) -> Result<Vec<Point2<f64>>, String> {
 fn mesh_of(o: &Options) -> Result<Mesh, String> {
     let err = |e: revolve::Error| format!("{}: {e}", o.profile);
     match o.profile.as_str() {
-        "wine_glass" => {
-            Revolution::new(profiles::wine_glass().map_err(err)?).tessellate(o.tolerance)
-        }
-        "vase" => Revolution::new(profiles::vase().map_err(err)?).tessellate(o.tolerance),
+        "wine_glass" => Revolution::new(common::wine_glass()).tessellate(o.tolerance),
+        "vase" => Revolution::new(common::vase()).tessellate(o.tolerance),
         path => {
             let points = read_points(path)?;
             if o.bezier {

@@ -6,70 +6,17 @@
 //! allocations. Each check runs the operation between two readings of the
 //! current thread's counter.
 
+mod common;
+
+use common::{allocations_in, allocations_so_far};
 use revolve::nalgebra::{Point, SVector};
 use revolve::{BSpline, Bezier, Curve};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::hint::black_box;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-struct CountingAllocator;
-
-thread_local! {
-    // `const` initialisation and a type without a destructor: reading or
-    // bumping the counter never allocates or registers anything.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count_one() {
-    // `try_with`: during thread teardown the slot may be gone; not counting
-    // there is harmless.
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-// SAFETY: every method forwards to `System` with the caller's arguments
-// unchanged, so `System`'s guarantees carry over; counting has no effect on
-// the memory handed out.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::alloc`.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::alloc_zeroed`.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::realloc`; `ptr` came
-        // from this allocator, i.e. from `System`.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: forwarded contract of `GlobalAlloc::dealloc`.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
 #[global_allocator]
-static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations_so_far() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-/// The number of heap allocations the current thread makes while running `f`.
-fn allocations_in<R>(f: impl FnOnce() -> R) -> usize {
-    let before = allocations_so_far();
-    black_box(f());
-    allocations_so_far() - before
-}
+static GLOBAL: common::CountingAllocator = common::CountingAllocator;
 
 /// `n` control points in `D` dimensions with distinct coordinates.
 fn points<const D: usize>(n: usize) -> Vec<Point<f64, D>> {

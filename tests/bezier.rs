@@ -5,6 +5,9 @@
 //! coefficients `C(i, k) / C(n, k)`, `i = 0 … n` (degree elevation), so a
 //! Bézier with those coordinates is exactly `tᵏ` whatever `n ≥ k` is.
 
+mod common;
+
+use common::assert_close;
 use revolve::nalgebra::{Point1, Point2, Point3, Vector2, Vector3};
 use revolve::{Bezier, Curve};
 
@@ -57,14 +60,6 @@ fn params() -> Vec<f64> {
         1.0 - 1e-12,
     ]);
     ts
-}
-
-fn assert_close(got: f64, want: f64, tol: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e}, |diff| = {:e} > {tol:e}",
-        (got - want).abs()
-    );
 }
 
 fn sample_curve() -> Bezier<2> {

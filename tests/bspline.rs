@@ -3,17 +3,12 @@
 //! of the domain, polynomial reproduction, knot insertion, Bézier spans and
 //! derivative splines.
 
+mod common;
+
+use common::assert_close;
 use revolve::bernstein::bernstein;
 use revolve::nalgebra::{Point1, Point2, Vector1, Vector2};
 use revolve::{BSpline, Bezier, Curve};
-
-fn assert_close(got: f64, want: f64, tol: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: got {got:e}, want {want:e}, |diff| = {:e} > {tol:e}",
-        (got - want).abs()
-    );
-}
 
 fn assert_all_close(got: &[f64], want: &[f64], tol: f64, what: &str) {
     assert_eq!(got.len(), want.len(), "{what}: lengths");

@@ -32,13 +32,13 @@
 //! - Normals: unit to `1e-12`, perpendicular to both partials to `1e-12`
 //!   relative, equal to `Surface::normal` at the hit's `uv` where defined.
 
-use revolve::nalgebra::{Point2, Point3, Vector3};
+mod common;
+
+use common::{GLASS, REL, Rng, bezier, check_hit, kappa, points, t_tolerance, uniform_cubic};
+use revolve::nalgebra::{Point3, Vector3};
 use revolve::{BSpline, Bezier, Curve, Hit, Intersect, Ray, Revolution, Surface};
 
 const EPS: f64 = f64::EPSILON;
-
-/// Backward error allowed, relative to the scene scale.
-const REL: f64 = 1e-12;
 
 const INF: f64 = f64::INFINITY;
 
@@ -46,131 +46,18 @@ const INF: f64 = f64::INFINITY;
 // Construction helpers
 // ---------------------------------------------------------------------------
 
-fn points(p: &[(f64, f64)]) -> Vec<Point2<f64>> {
-    p.iter().map(|&(x, y)| Point2::new(x, y)).collect()
-}
-
-/// The Bézier profile on these control points, revolved.
-fn bezier(p: &[(f64, f64)]) -> Revolution<Bezier<2>> {
-    Revolution::new(Bezier::new(points(p)).unwrap())
-}
-
 /// The polyline through these points (a clamped degree-1 B-spline), revolved.
 fn polyline(p: &[(f64, f64)]) -> Revolution<BSpline<2>> {
     Revolution::new(BSpline::clamped(1, points(p)).unwrap())
-}
-
-/// The course framework's uniform cubic B-spline on these points, revolved.
-fn uniform_cubic(p: &[(f64, f64)]) -> Revolution<BSpline<2>> {
-    Revolution::new(BSpline::uniform(3, points(p)).unwrap())
 }
 
 fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
     Ray::new(Point3::from(o), Vector3::from(d))
 }
 
-/// A small deterministic generator (SplitMix64) for reproducible rays.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * unit
-    }
-
-    /// A point uniform in the box `lo..hi`.
-    fn point(&mut self, lo: [f64; 3], hi: [f64; 3]) -> Point3<f64> {
-        Point3::new(
-            self.range(lo[0], hi[0]),
-            self.range(lo[1], hi[1]),
-            self.range(lo[2], hi[2]),
-        )
-    }
-
-    /// A unit vector, uniform on the sphere.
-    fn direction(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-}
-
 // ---------------------------------------------------------------------------
 // Checks on hits
 // ---------------------------------------------------------------------------
-
-/// Condition number of a hit of direction `d` on a surface with unit normal
-/// `n`: how much `t·|d|` moves per unit of backward error.
-fn kappa(d: &Vector3<f64>, n: &Vector3<f64>) -> f64 {
-    let c = d.normalize().dot(&n.normalize()).abs();
-    if c > 0.0 { (1.0 / c).max(1.0) } else { INF }
-}
-
-/// Allowed `|t − t_ref|` (see the module docs).
-fn t_tolerance(scale: f64, kappa: f64, dir: &Vector3<f64>) -> f64 {
-    (REL + 16.0 * EPS * kappa) * scale / dir.norm()
-}
-
-/// Everything every hit must satisfy: finite, inside `(t_min, t_max)`, its
-/// point on the ray and on the surface, a unit normal equal to the surface's
-/// normal there and perpendicular to the partials.
-fn check_hit<S: Surface>(s: &S, r: &Ray, h: &Hit, t_min: f64, t_max: f64, scale: f64) {
-    let finite = h.t.is_finite()
-        && h.point.iter().all(|c| c.is_finite())
-        && h.normal.iter().all(|c| c.is_finite())
-        && h.uv.0.is_finite()
-        && h.uv.1.is_finite();
-    assert!(finite, "non-finite hit {h:?} for {r:?}");
-    assert!(
-        h.t > t_min && h.t < t_max,
-        "t = {} outside ({t_min}, {t_max}) for {r:?}",
-        h.t
-    );
-    let on_ray = (r.at(h.t) - h.point).norm();
-    assert!(
-        on_ray <= REL * scale,
-        "hit point {on_ray:e} off the ray: {h:?} {r:?}"
-    );
-    let on_surface = (s.eval(h.uv.0, h.uv.1) - h.point).norm();
-    assert!(
-        on_surface <= REL * scale,
-        "hit point {on_surface:e} off S(uv): {h:?} {r:?}"
-    );
-    let n = h.normal.into_inner();
-    assert!((n.norm() - 1.0).abs() <= 1e-12, "normal not unit: {h:?}");
-    if let Some(sn) = s.normal(h.uv.0, h.uv.1) {
-        assert!(
-            (sn.into_inner() - n).norm() <= 1e-12,
-            "hit normal {n:?} differs from Surface::normal {sn:?}"
-        );
-        let (su, sv) = s.partials(h.uv.0, h.uv.1);
-        for p in [su, sv] {
-            if p.norm() > 0.0 {
-                assert!(
-                    n.dot(&p).abs() <= 1e-12 * p.norm(),
-                    "normal {n:?} not perpendicular to partial {p:?}: {h:?}"
-                );
-            }
-        }
-    }
-}
 
 /// Asserts that the nearest hit in `(t_min, t_max)` is at `t_ref`, checks it,
 /// and returns it.
@@ -680,38 +567,6 @@ fn revolution_normal(dx: f64, dy: f64, p: &Point3<f64>) -> Vector3<f64> {
 // ---------------------------------------------------------------------------
 // Shared scenes
 // ---------------------------------------------------------------------------
-
-/// A wine glass as the course scene files write it: a uniform cubic B-spline
-/// of 25 control points, three of them repeated on the axis at each end (the
-/// foot's bottom at `y = −1` and the bowl's inside at `y = 0.15`, both flat
-/// spans, so both poles have a tangent plane).
-const GLASS: [(f64, f64); 25] = [
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.55, -1.0),
-    (0.62, -0.97),
-    (0.55, -0.92),
-    (0.2, -0.88),
-    (0.07, -0.8),
-    (0.05, -0.6),
-    (0.05, -0.3),
-    (0.07, -0.1),
-    (0.2, 0.0),
-    (0.5, 0.1),
-    (0.7, 0.35),
-    (0.78, 0.7),
-    (0.75, 1.0),
-    (0.72, 1.06),
-    (0.69, 1.0),
-    (0.7, 0.7),
-    (0.62, 0.38),
-    (0.42, 0.22),
-    (0.12, 0.15),
-    (0.0, 0.15),
-    (0.0, 0.15),
-    (0.0, 0.15),
-];
 
 fn scaled(p: &[(f64, f64)], s: f64, mirror: bool) -> Vec<(f64, f64)> {
     let m = if mirror { -1.0 } else { 1.0 };

@@ -11,64 +11,22 @@
 //! A counting global allocator (per thread) checks that queries do not
 //! allocate.
 
+mod common;
+
+use common::{GLASS, allocations_in, bezier, uniform_cubic};
 use revolve::nalgebra::{Point2, Point3, Unit, Vector2, Vector3};
 use revolve::ray::newton::{MAX_DEPTH, NewtonFinish, NewtonReport};
 use revolve::{
-    Aabb, BSpline, Bezier, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray,
-    Revolution, Surface,
+    Aabb, Bezier, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution,
+    Surface,
 };
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 // ---------------------------------------------------------------------------
 // Allocation counting
 
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count_one() {
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-// SAFETY: every method forwards to `System` unchanged; counting does not touch
-// the memory handed out.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::alloc`.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::alloc_zeroed`.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count_one();
-        // SAFETY: forwarded contract of `GlobalAlloc::realloc`.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: forwarded contract of `GlobalAlloc::dealloc`.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
 #[global_allocator]
-static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations_in<R>(f: impl FnOnce() -> R) -> usize {
-    let before = ALLOCATIONS.with(Cell::get);
-    std::hint::black_box(f());
-    ALLOCATIONS.with(Cell::get) - before
-}
+static GLOBAL: common::CountingAllocator = common::CountingAllocator;
 
 // ---------------------------------------------------------------------------
 // Surfaces and rays
@@ -79,46 +37,10 @@ fn line(a: (f64, f64), b: (f64, f64)) -> Revolution<Bezier<2>> {
 
 /// A cubic Bézier vase: a flat bottom meeting the axis at a pole, a belly
 /// and a flaring neck.
+const POLE_VASE: [(f64, f64); 4] = [(0.0, 0.0), (1.4, 0.0), (0.1, 1.6), (0.6, 2.0)];
+
 fn vase() -> Revolution<Bezier<2>> {
-    let pts = [(0.0, 0.0), (1.4, 0.0), (0.1, 1.6), (0.6, 2.0)];
-    Revolution::new(Bezier::new(pts.iter().map(|&(x, y)| Point2::new(x, y)).collect()).unwrap())
-}
-
-/// The control points of a wine glass: foot (starting on the axis), stem,
-/// bowl and its inside, back to the axis. 25 points.
-const GLASS: [(f64, f64); 25] = [
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.6, -1.0),
-    (0.7, -0.97),
-    (0.45, -0.92),
-    (0.12, -0.85),
-    (0.07, -0.7),
-    (0.06, -0.45),
-    (0.06, -0.2),
-    (0.09, -0.05),
-    (0.3, 0.05),
-    (0.55, 0.15),
-    (0.7, 0.4),
-    (0.76, 0.7),
-    (0.75, 0.95),
-    (0.72, 1.03),
-    (0.69, 0.95),
-    (0.7, 0.7),
-    (0.64, 0.45),
-    (0.5, 0.28),
-    (0.3, 0.2),
-    (0.1, 0.17),
-    (0.0, 0.16),
-    (0.0, 0.16),
-];
-
-/// The wine glass as a cubic B-spline with the course framework's uniform
-/// knots.
-fn wine_glass() -> Revolution<BSpline<2>> {
-    let pts = GLASS.iter().map(|&(x, y)| Point2::new(x, y)).collect();
-    Revolution::new(BSpline::uniform(3, pts).unwrap())
+    bezier(&POLE_VASE)
 }
 
 /// A deterministic generator of uniform numbers in `[0, 1)` (xorshift64).
@@ -482,14 +404,14 @@ fn vase_newton_agrees_with_the_exact_solver() {
 
 #[test]
 fn wine_glass_newton_agrees_with_the_exact_solver() {
-    let glass = wine_glass();
+    let glass = uniform_cubic(&GLASS);
     assert_eq!(glass.profile().points().len(), 25);
     // The glass has thin walls and folds (the foot's edge, the rim): rays
     // crossing a fold inside one leaf have two roots there, and Newton from
     // the leaf's centre may pick the farther one. Deeper trees make that
-    // rarer; measured rates (per exact hit) are 2.8%, 0.06%, 0.06% at
+    // rarer; measured rates (per exact hit) are 3.7%, 0.16%, 0.03% at
     // depths 6, 8, 10. The bounds leave a little room.
-    for (depth, max_rate) in [(6, 0.04), (8, 0.004), (10, 0.004)] {
+    for (depth, max_rate) in [(6, 0.05), (8, 0.004), (10, 0.004)] {
         let c = compare(&glass, &glass, depth, 5000);
         println!("glass depth {depth}: {c:?}");
         assert_eq!(c.wrong, 0, "{c:?}");
@@ -503,10 +425,10 @@ fn wine_glass_newton_agrees_with_the_exact_solver() {
 #[test]
 fn placed_and_scaled_surfaces_agree_with_the_exact_solver() {
     let axis = Unit::new_normalize(Vector3::new(0.3, -1.0, 0.5));
-    let pts = [(0.0, 0.0), (1.4, 0.0), (0.1, 1.6), (0.6, 2.0)];
     for k in [1e-6, 1.0, 1e6] {
         let profile = Bezier::new(
-            pts.iter()
+            POLE_VASE
+                .iter()
                 .map(|&(x, y)| Point2::new(x * k, y * k))
                 .collect(),
         );
@@ -589,7 +511,7 @@ fn patch_boxes_contain_the_patch() {
         .unwrap(),
     );
     check_patches("vase", &vase(), &mut rng);
-    check_patches("glass", &wine_glass(), &mut rng);
+    check_patches("glass", &uniform_cubic(&GLASS), &mut rng);
     check_patches("tilted vase", &tilted, &mut rng);
     check_patches("negative x", &negative, &mut rng);
     check_patches("crossing the axis", &crossing, &mut rng);
@@ -763,7 +685,7 @@ fn assert_counts_consistent(report: &NewtonReport) {
 
 #[test]
 fn the_report_path_finds_the_same_hits_as_the_fast_path() {
-    let glass = wine_glass();
+    let glass = uniform_cubic(&GLASS);
     let newton = NewtonIntersector::new(&glass, 8);
     let bounds = newton.bounds();
     let mut rng = Rng::new(5);
@@ -915,9 +837,9 @@ fn cone_apex_hit_faces_the_ray() {
 
 #[test]
 fn owned_and_borrowed_intersectors_agree_and_depth_is_clamped() {
-    let glass = wine_glass();
+    let glass = uniform_cubic(&GLASS);
     let borrowed = NewtonIntersector::new(&glass, 6);
-    let owned = NewtonIntersector::new(wine_glass(), 6);
+    let owned = NewtonIntersector::new(uniform_cubic(&GLASS), 6);
     assert_eq!(borrowed.bounds(), owned.bounds());
     assert_eq!(owned.surface().profile().points().len(), 25);
     let mut rng = Rng::new(3);
@@ -940,7 +862,7 @@ fn owned_and_borrowed_intersectors_agree_and_depth_is_clamped() {
 #[test]
 fn queries_do_not_allocate() {
     let vase = vase();
-    let glass = wine_glass();
+    let glass = uniform_cubic(&GLASS);
     let newton_vase = NewtonIntersector::new(&vase, 8);
     let newton_glass = NewtonIntersector::new(&glass, 10);
     let mut rng = Rng::new(17);

@@ -18,96 +18,20 @@
 //!   `|t − t_ref|·|d| ≤ (1e-12 + 16ε·κ)·scale` against the bisected bracket,
 //!   `κ = |d|/|d·n|` the condition number of the crossing.
 
+mod common;
+
+use common::{GLASS, REL, Rng, bezier, check_hit, kappa, points, t_tolerance, uniform_cubic};
 use proptest::prelude::*;
 use revolve::nalgebra::{Point2, Point3, Unit, Vector3};
-use revolve::{Aabb, BSpline, Bezier, Curve, Hit, Intersect, Ray, Revolution, Surface, Tolerance};
+use revolve::{Aabb, BSpline, Curve, Intersect, Ray, Revolution, Surface, Tolerance};
 use std::f64::consts::{PI, TAU};
 
 const EPS: f64 = f64::EPSILON;
-const REL: f64 = 1e-12;
 const INF: f64 = f64::INFINITY;
 
 // ---------------------------------------------------------------------------
 // Helpers
 // ---------------------------------------------------------------------------
-
-/// A small deterministic generator (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * unit
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-
-    fn direction(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-}
-
-fn points(p: &[(f64, f64)]) -> Vec<Point2<f64>> {
-    p.iter().map(|&(x, y)| Point2::new(x, y)).collect()
-}
-
-fn bezier(p: &[(f64, f64)]) -> Revolution<Bezier<2>> {
-    Revolution::new(Bezier::new(points(p)).unwrap())
-}
-
-fn uniform_cubic(p: &[(f64, f64)]) -> Revolution<BSpline<2>> {
-    Revolution::new(BSpline::uniform(3, points(p)).unwrap())
-}
-
-/// A wine-glass profile as the course scene files write it (uniform cubic
-/// B-spline, control points repeated on the axis at both ends).
-const GLASS: [(f64, f64); 25] = [
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.0, -1.0),
-    (0.55, -1.0),
-    (0.62, -0.97),
-    (0.55, -0.92),
-    (0.2, -0.88),
-    (0.07, -0.8),
-    (0.05, -0.6),
-    (0.05, -0.3),
-    (0.07, -0.1),
-    (0.2, 0.0),
-    (0.5, 0.1),
-    (0.7, 0.35),
-    (0.78, 0.7),
-    (0.75, 1.0),
-    (0.72, 1.06),
-    (0.69, 1.0),
-    (0.7, 0.7),
-    (0.62, 0.38),
-    (0.42, 0.22),
-    (0.12, 0.15),
-    (0.0, 0.15),
-    (0.0, 0.15),
-    (0.0, 0.15),
-];
 
 /// A closed body of one cubic Bézier, poles at both ends.
 const CAPSULE: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
@@ -167,49 +91,6 @@ fn third_derivative_bound<C: Curve<2>>(c: &C) -> f64 {
         }
     }
     m
-}
-
-/// Everything any hit must satisfy.
-fn check_hit<S: Surface>(s: &S, r: &Ray, h: &Hit, t_min: f64, t_max: f64, scale: f64) {
-    let finite = h.t.is_finite()
-        && h.point.iter().all(|c| c.is_finite())
-        && h.normal.iter().all(|c| c.is_finite())
-        && h.uv.0.is_finite()
-        && h.uv.1.is_finite();
-    assert!(finite, "non-finite hit {h:?} for {r:?}");
-    assert!(
-        h.t > t_min && h.t < t_max,
-        "t outside ({t_min}, {t_max}): {h:?}"
-    );
-    let on_ray = (r.at(h.t) - h.point).norm();
-    assert!(
-        on_ray <= REL * scale,
-        "point {on_ray:e} off the ray: {h:?} {r:?}"
-    );
-    let on_surface = (s.eval(h.uv.0, h.uv.1) - h.point).norm();
-    assert!(
-        on_surface <= REL * scale,
-        "point {on_surface:e} off S(uv): {h:?} {r:?}"
-    );
-    let n = h.normal.into_inner();
-    assert!((n.norm() - 1.0).abs() <= 1e-12, "normal not unit: {h:?}");
-    let [(u0, u1), (v0, v1)] = s.domain();
-    assert!(
-        h.uv.0 >= u0 && h.uv.0 <= u1 && h.uv.1 >= v0 && h.uv.1 <= v1,
-        "{h:?}"
-    );
-    if let Some(sn) = s.normal(h.uv.0, h.uv.1) {
-        assert!((sn.into_inner() - n).norm() <= 1e-12, "{h:?} vs {sn:?}");
-    }
-}
-
-fn kappa(d: &Vector3<f64>, n: &Vector3<f64>) -> f64 {
-    let c = d.normalize().dot(&n.normalize()).abs();
-    if c > 0.0 { (1.0 / c).max(1.0) } else { INF }
-}
-
-fn t_tolerance(scale: f64, kappa: f64, d: &Vector3<f64>) -> f64 {
-    (REL + 16.0 * EPS * kappa) * scale / d.norm()
 }
 
 /// A random ray from about `4·size` away toward a random point of the box
