@@ -30,7 +30,7 @@ const JOIN_ROUNDING: f64 = 8.0 * f64::EPSILON;
 /// Tolerances below this multiple of the largest control-point coordinate are
 /// rejected: rounding (about `1e-16` of the scale) would dominate the bound and
 /// the number of pieces would explode.
-const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
+pub(crate) const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
 
 /// The result of adaptive flattening: samples and the deviation bound achieved.
 ///

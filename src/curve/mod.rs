@@ -28,7 +28,7 @@ mod pieces;
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
 pub use flatten::Flattening;
-pub(crate) use flatten::flatten_pieces;
+pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
 
 use crate::Error;
 use nalgebra::{Point, SVector, Unit};

@@ -14,21 +14,38 @@
 //!
 //! of the mesh; the tolerance is split evenly between the two terms.
 
-use crate::curve::flatten_pieces;
-use crate::{Curve, Error, Revolution, Surface};
+use crate::curve::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
+use crate::surface::revolution::profile_normal;
+use crate::{Curve, Error, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 use std::f64::consts::{PI, TAU};
 use std::io::{self, Write};
 
-/// The most angular steps [`Revolution::tessellate`] uses.
+/// The most vertices [`Revolution::tessellate`] makes (2²⁴, about 1 GiB of
+/// mesh); tolerances that would need more are refused.
+const MAX_VERTICES: usize = 1 << 24;
+
+/// The most angular steps [`Revolution::tessellate`] uses; tolerances that
+/// would need more are refused (`ToleranceTooSmall`).
 const MAX_ANGLE_STEPS: usize = 1 << 16;
+
+/// What [`Revolution::tessellate`] decided: the profile rings, the angular
+/// steps and the sagitta they leave.
+struct Plan<const D: usize = 2> {
+    flat: crate::Flattening<D>,
+    steps: usize,
+    sagitta: f64,
+}
 
 /// A triangle mesh with per-vertex normals and surface parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.
     pub positions: Vec<Point3<f64>>,
-    /// Unit normals per vertex (the surface's orientation).
+    /// Unit normals per vertex (the surface's orientation). A ring has one
+    /// normal per vertex, the surface's (right-limit) normal; where the
+    /// profile has a crease the triangles below it share those normals
+    /// (known limitation: no split normals at creases).
     pub normals: Vec<Unit<Vector3<f64>>>,
     /// Surface parameters `(u, v)` per vertex.
     pub uvs: Vec<(f64, f64)>,
@@ -77,34 +94,26 @@ impl<C: Curve<2>> Revolution<C> {
     /// vertices so that `(u, v)` stay continuous.
     ///
     /// # Errors
-    /// [`Error::InvalidTolerance`] or [`Error::ToleranceTooSmall`] as for
-    /// flattening; [`Error::NotPiecewisePolynomial`] for a profile without
+    /// [`Error::InvalidTolerance`]; [`Error::ToleranceTooSmall`] below what
+    /// flattening certifies (for half the tolerance), below what 65536
+    /// angular steps reach, or where the mesh would exceed 2²⁴ vertices (its
+    /// `min` is a tolerance that fits); [`Error::NotPiecewisePolynomial`] for a profile without
     /// [Bézier spans](Curve::bezier_spans) (no certified bound is possible).
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
-        if !(tolerance.is_finite() && tolerance > 0.0) {
-            return Err(Error::InvalidTolerance { tolerance });
-        }
-        let spans = self
-            .profile()
-            .bezier_spans()
-            .ok_or(Error::NotPiecewisePolynomial)?;
-        let flat = flatten_pieces(
-            self.profile(),
-            spans.iter().map(|s| (s.curve.points(), s.knots)),
-            0.5 * tolerance,
-        )?;
-        let r_max = spans
-            .iter()
-            .flat_map(|s| s.curve.points())
-            .fold(0.0_f64, |m, p| m.max(p.x.abs()));
-        // Smallest N with R(1 − cos(π/N)) ≤ tolerance/2.
-        let steps = if r_max == 0.0 {
-            3
-        } else {
-            let half = (1.0 - 0.5 * tolerance / r_max).clamp(-1.0, 1.0).acos();
-            ((PI / half).ceil() as usize).clamp(3, MAX_ANGLE_STEPS)
+        let Plan {
+            flat,
+            steps,
+            sagitta,
+        } = match self.plan(tolerance) {
+            Ok(plan) => plan,
+            Err(Error::ToleranceTooSmall { min, .. }) => {
+                return Err(Error::ToleranceTooSmall {
+                    tolerance,
+                    min: self.usable_minimum(min)?,
+                });
+            }
+            Err(e) => return Err(e),
         };
-        let sagitta = r_max * (1.0 - (PI / steps as f64).cos());
         let columns = steps + 1;
         let rings = flat.samples.len();
         let mut mesh = Mesh {
@@ -114,25 +123,37 @@ impl<C: Curve<2>> Revolution<C> {
             triangles: Vec::new(),
             bound: flat.bound + sagitta,
         };
-        for sample in &flat.samples {
-            for j in 0..columns {
-                let theta = if j == steps {
-                    TAU
-                } else {
-                    TAU * j as f64 / steps as f64
-                };
-                let u = sample.t;
-                mesh.positions.push(self.eval(u, theta));
-                let n = self
-                    .normal(u, theta)
+        let up = Unit::new_unchecked(self.to_world().rotation * Vector3::y());
+        for (i, sample) in flat.samples.iter().enumerate() {
+            // The ring comes from the sample itself, so a jump's left-limit
+            // sample makes its own ring (evaluating at its t would give the
+            // right limit).
+            let (x, y) = (sample.point.x, sample.point.y);
+            let tangent =
+                Unit::try_new(sample.derivative, 0.0).or_else(|| self.profile().tangent(sample.t));
+            let arriving = flat
+                .samples
+                .get(i + 1)
+                .is_none_or(|next| next.t == sample.t);
+            let first = mesh.positions.len();
+            for j in 0..steps {
+                let theta = TAU * j as f64 / steps as f64;
+                let (sn, cs) = theta.sin_cos();
+                mesh.positions
+                    .push(self.to_world() * Point3::new(x * cs, y, -x * sn));
+                let n = tangent
+                    .and_then(|t| profile_normal(x, t, arriving, theta))
+                    .map(|n| Unit::new_unchecked(self.to_world().rotation * n.into_inner()))
                     // No tangent plane (an apex): the axis direction is the
                     // best vertex normal there.
-                    .unwrap_or_else(|| {
-                        Unit::new_unchecked(self.to_world().rotation * Vector3::y())
-                    });
+                    .unwrap_or(up);
                 mesh.normals.push(n);
-                mesh.uvs.push((u, theta));
+                mesh.uvs.push((sample.t, theta));
             }
+            // The seam: θ = 2π repeats θ = 0 exactly.
+            mesh.positions.push(mesh.positions[first]);
+            mesh.normals.push(mesh.normals[first]);
+            mesh.uvs.push((sample.t, TAU));
         }
         let index = |i: usize, j: usize| (i * columns + j) as u32;
         for i in 0..rings - 1 {
@@ -152,5 +173,75 @@ impl<C: Curve<2>> Revolution<C> {
             }
         }
         Ok(mesh)
+    }
+    /// The profile samples and angular steps for `tolerance`, with the
+    /// bound; `ToleranceTooSmall` (with a `min` for this check) if any limit
+    /// is exceeded.
+    fn plan(&self, tolerance: f64) -> Result<Plan, Error> {
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(Error::InvalidTolerance { tolerance });
+        }
+        let spans = self
+            .profile()
+            .bezier_spans()
+            .ok_or(Error::NotPiecewisePolynomial)?;
+        let scale = spans
+            .iter()
+            .flat_map(|s| s.curve.points())
+            .fold(0.0_f64, |m, p| m.max(p.coords.amax()));
+        let r_max = spans
+            .iter()
+            .flat_map(|s| s.curve.points())
+            .fold(0.0_f64, |m, p| m.max(p.x.abs()));
+        // The smallest tolerance both halves can meet: flattening's floor
+        // (for half the tolerance) and the sagitta with the most steps.
+        let min = (2.0 * MIN_RELATIVE_TOLERANCE * scale)
+            .max(2.0 * r_max * (1.0 - (PI / MAX_ANGLE_STEPS as f64).cos()) * (1.0 + 1e-9));
+        if tolerance < min {
+            return Err(Error::ToleranceTooSmall { tolerance, min });
+        }
+        let flat = flatten_pieces(
+            self.profile(),
+            spans.iter().map(|s| (s.curve.points(), s.knots)),
+            0.5 * tolerance,
+        )?;
+        // Smallest N with R(1 − cos(π/N)) ≤ tolerance/2 (at most the cap,
+        // by the check above).
+        let steps = if r_max == 0.0 {
+            3
+        } else {
+            let half = (1.0 - 0.5 * tolerance / r_max).clamp(-1.0, 1.0).acos();
+            ((PI / half).ceil() as usize).clamp(3, MAX_ANGLE_STEPS)
+        };
+        let sagitta = r_max * (1.0 - (PI / steps as f64).cos());
+        let columns = steps + 1;
+        let rings = flat.samples.len();
+        // The vertex count grows like 1/tolerance; refuse meshes beyond the
+        // budget with the tolerance that would fit it.
+        let vertices = rings as f64 * columns as f64;
+        if vertices > MAX_VERTICES as f64 {
+            return Err(Error::ToleranceTooSmall {
+                tolerance,
+                min: tolerance * vertices / MAX_VERTICES as f64 * 1.25,
+            });
+        }
+        Ok(Plan {
+            flat,
+            steps,
+            sagitta,
+        })
+    }
+
+    /// A tolerance that passes every check, starting from the `min` one
+    /// check reported (each check's minimum can trip the next one).
+    fn usable_minimum(&self, mut min: f64) -> Result<f64, Error> {
+        for _ in 0..4 {
+            match self.plan(min) {
+                Ok(_) => return Ok(min),
+                Err(Error::ToleranceTooSmall { min: next, .. }) => min = next.max(1.5 * min),
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(min)
     }
 }

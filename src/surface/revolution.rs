@@ -2,7 +2,9 @@
 
 use crate::ray::revolution::SpanTable;
 use crate::{Aabb, Curve, Hit, Intersect, Ray, Surface, Tolerance};
-use nalgebra::{Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
+use nalgebra::{
+    Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
+};
 use std::f64::consts::TAU;
 
 /// The surface swept by a profile curve `(x(u), y(u))` turning about an axis.
@@ -133,30 +135,38 @@ impl<C: Curve<2>> Revolution<C> {
 
     /// The unit normal in the local frame (see the type's edge rules).
     pub fn normal_local(&self, u: f64, theta: f64) -> Option<Unit<Vector3<f64>>> {
-        let tangent = self.profile.tangent(u)?;
-        let (dx, dy) = (tangent.x, tangent.y);
         let x = self.profile.eval(u).x;
-        let side = if x != 0.0 {
-            x.signum()
-        } else {
-            // On the axis. A tangent plane exists only if the profile meets
-            // the axis perpendicularly (to within √ε: a steeper "cone" is a
-            // disk to double precision).
-            if dy.abs() > f64::EPSILON.sqrt() {
-                return None;
-            }
-            let (_, u_end) = self.profile.domain();
-            // The profile leaves the axis toward sign(x′) on the right, and
-            // arrives from −sign(x′) at the end of the domain.
-            if u >= u_end {
-                -dx.signum()
-            } else {
-                dx.signum()
-            }
-        };
-        let (s, c) = theta.sin_cos();
-        Unit::try_new(Vector3::new(-dy * c, dx, dy * s) * side, 0.0)
+        let at_end = u >= self.profile.domain().1;
+        profile_normal(x, self.profile.tangent(u)?, at_end, theta)
     }
+}
+
+/// The local unit normal at angle `theta` of the profile point with radius
+/// coordinate `x` and unit tangent `tangent` (see [`Revolution`]'s edge
+/// rules); `at_end` says the point is where the profile ends, so that on the
+/// axis the profile arrives rather than leaves.
+pub(crate) fn profile_normal(
+    x: f64,
+    tangent: Unit<Vector2<f64>>,
+    at_end: bool,
+    theta: f64,
+) -> Option<Unit<Vector3<f64>>> {
+    let (dx, dy) = (tangent.x, tangent.y);
+    let side = if x != 0.0 {
+        x.signum()
+    } else {
+        // On the axis. A tangent plane exists only if the profile meets the
+        // axis perpendicularly (to within √ε: a steeper "cone" is a disk to
+        // double precision).
+        if dy.abs() > f64::EPSILON.sqrt() {
+            return None;
+        }
+        // The profile leaves the axis toward sign(x′), and arrives from
+        // −sign(x′) at its end.
+        if at_end { -dx.signum() } else { dx.signum() }
+    };
+    let (s, c) = theta.sin_cos();
+    Unit::try_new(Vector3::new(-dy * c, dx, dy * s) * side, 0.0)
 }
 
 impl<C: Curve<2>> Surface for Revolution<C> {
