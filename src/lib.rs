@@ -3,7 +3,7 @@
 //! Spline curves and surfaces of revolution with exact, robust ray
 //! intersection.
 //!
-//! This release provides the curve layer:
+//! The curve layer:
 //!
 //! - [`Bezier`] curves of any degree and dimension, evaluated by de Casteljau's
 //!   algorithm, with derivatives of any order, subdivision and bounds;
@@ -14,7 +14,19 @@
 //! - the [`Curve`] trait they share, usable for your own curve types, with
 //!   uniform sampling ([`Curve::discretize`]) and adaptive flattening to a
 //!   guaranteed tolerance ([`Bezier::flatten`], [`BSpline::flatten`]);
-//! - the Bernstein-basis kernels in [`bernstein`].
+//! - the Bernstein-basis kernels in [`bernstein`] and root isolation in
+//!   [`roots`].
+//!
+//! Surfaces and rays (in progress):
+//!
+//! - [`Revolution`]: a profile turned about an axis ([`Surface`], with
+//!   analytic partials and limit normals on the axis), placeable anywhere,
+//!   tessellated with a certified bound ([`Mesh`]);
+//! - [`Intersect`] for revolutions: the exact intersector (the angle
+//!   eliminated, one polynomial per profile span, every root isolated), and
+//!   [`NewtonIntersector`] for any [`BoundedSurface`];
+//! - feature `testing`: proptest strategies and law checkers for your own
+//!   curves and surfaces.
 //!
 //! Bad input is an [`Error`] value, never a panic; evaluation never returns
 //! NaN (parameters are moved into the domain, see [`Curve`]). Evaluation does
