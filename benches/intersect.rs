@@ -1,4 +1,5 @@
-//! Intersection throughput: the exact revolution intersector on a vase (one
+//! Intersection throughput: the exact revolution intersector and the generic
+//! Newton intersector (patch-tree depths 6 and 10) on a vase (one
 //! cubic Bézier) and a wine glass (25-point cubic uniform B-spline), against a
 //! Möller–Trumbore ray–triangle test in the same run, so the headline is the
 //! cost of one revolution intersection in triangle tests.
@@ -24,7 +25,9 @@ use std::time::Duration;
 use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Vector3};
-use revolve::{Aabb, Curve, Intersect, Ray, Revolution, Surface};
+use revolve::{
+    Aabb, BoundedSurface, Curve, Intersect, NewtonIntersector, Ray, Revolution, Surface,
+};
 
 const N_RAYS: usize = 1024;
 const MASK: usize = N_RAYS - 1;
@@ -101,20 +104,27 @@ fn config() -> Criterion {
         .sample_size(50)
 }
 
-fn bench_surface<S: Surface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
+/// Patch-tree depths of the Newton intersector benchmarked.
+const NEWTON_DEPTHS: [u32; 2] = [6, 10];
+
+fn bench_surface<S: BoundedSurface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
     let b = s.bounds();
     let sets = [
         ("random", box_rays(&b, false, 1)),
         ("perpendicular", box_rays(&b, true, 2)),
         ("grazing", grazing_rays(s, 3)),
     ];
+    let newton: Vec<_> = NEWTON_DEPTHS
+        .iter()
+        .map(|&depth| (depth, NewtonIntersector::new(s, depth)))
+        .collect();
     let mut group = c.benchmark_group(format!("intersect_{name}"));
     for (set, rays) in &sets {
         let hits = rays
             .iter()
             .filter(|r| s.intersect(r, 0.0, f64::INFINITY).is_some())
             .count();
-        eprintln!("{name}/{set}: {hits} of {N_RAYS} rays hit");
+        eprintln!("{name}/{set}: {hits} of {N_RAYS} rays hit (exact)");
         let mut i = 0;
         group.bench_function(BenchmarkId::new("exact", set), |bench| {
             bench.iter(|| {
@@ -122,6 +132,21 @@ fn bench_surface<S: Surface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
                 black_box(s).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
             })
         });
+        for (depth, n) in &newton {
+            let hits = rays
+                .iter()
+                .filter(|r| n.intersect(r, 0.0, f64::INFINITY).is_some())
+                .count();
+            eprintln!("{name}/{set}: {hits} of {N_RAYS} rays hit (Newton, depth {depth})");
+            let mut i = 0;
+            let id = BenchmarkId::new(format!("newton_depth_{depth}"), set);
+            group.bench_function(id, |bench| {
+                bench.iter(|| {
+                    i = (i + 1) & MASK;
+                    black_box(n).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
+                })
+            });
+        }
     }
     group.finish();
 }
