@@ -218,9 +218,10 @@ fn refine(c: &[f64], a: f64, b: f64) -> f64 {
     let n = c.len() - 1;
     let rising = c[n] > c[0];
     let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+    let resolution = 2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
     // Start from the chord's zero: exact for a linear piece.
     let mut s = (c[0] / (c[0] - c[n])).clamp(0.0, 1.0);
-    for _ in 0..100 {
+    for _ in 0..64 {
         let Some((f, df)) = eval_with_derivative(c, s) else {
             break;
         };
@@ -240,11 +241,14 @@ fn refine(c: &[f64], a: f64, b: f64) -> f64 {
         } else {
             0.5 * (lo + hi)
         };
-        if next == s || hi - lo <= f64::EPSILON * hi.abs() {
-            s = next;
+        // Done once the step no longer changes the root in the caller's
+        // parameter u = a + (b − a)s (a Newton step near the root also
+        // bounds the remaining error), or the bracket has collapsed.
+        let step = (b - a) * (next - s).abs();
+        s = next;
+        if step <= resolution || hi - lo <= f64::EPSILON {
             break;
         }
-        s = next;
     }
     let s = s.clamp(lo, hi);
     a + (b - a) * s

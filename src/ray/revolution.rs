@@ -172,6 +172,8 @@ impl SpanTable {
         if spans.iter().any(|s| s.curve.degree() != degree) {
             return None;
         }
+        let split = refine_spans(spans);
+        let spans = &split[..];
         let mut xs = Vec::with_capacity(spans.len() * (degree + 1));
         let mut ys = Vec::with_capacity(xs.capacity());
         let mut table = Vec::with_capacity(spans.len());
@@ -559,6 +561,51 @@ fn axis_root(xs: &[f64], s0: f64) -> Option<f64> {
         s = next;
     }
     None
+}
+
+/// Profiles are cut into at least this many pieces (each span into equal
+/// parameter parts): tighter height and radius ranges cull more spans per
+/// ray and leave simpler polynomials to the ones that remain.
+const MIN_PIECES: usize = 8;
+
+/// The spans cut by de Casteljau subdivision into `⌈MIN_PIECES / n⌉` equal
+/// parameter parts each (the same curve, exactly up to rounding).
+fn refine_spans(spans: &[BezierSpan<2>]) -> Vec<BezierSpan<2>> {
+    use crate::bernstein::subdivide;
+    use nalgebra::Point2;
+    let parts = MIN_PIECES.div_ceil(spans.len()).max(1);
+    let mut out = Vec::with_capacity(spans.len() * parts);
+    for span in spans {
+        let (a, b) = span.knots;
+        let mut rest: Vec<_> = span.curve.points().iter().map(|p| p.coords).collect();
+        let (mut left, mut right) = (rest.clone(), rest.clone());
+        for k in 0..parts {
+            let (lo, hi) = (
+                a + (b - a) * k as f64 / parts as f64,
+                if k + 1 == parts {
+                    b
+                } else {
+                    a + (b - a) * (k + 1) as f64 / parts as f64
+                },
+            );
+            let piece = if k + 1 == parts {
+                rest.clone()
+            } else {
+                // Split what remains at the share this part takes of it.
+                subdivide(&rest, 1.0 / (parts - k) as f64, &mut left, &mut right);
+                rest.copy_from_slice(&right);
+                left.clone()
+            };
+            let points = piece.into_iter().map(Point2::from).collect();
+            if let Ok(curve) = crate::Bezier::new(points) {
+                out.push(BezierSpan {
+                    knots: (lo, hi),
+                    curve,
+                });
+            }
+        }
+    }
+    out
 }
 
 /// The parameters to try for one root report: the root itself, or the ends
