@@ -151,6 +151,12 @@ pub(crate) struct LocalHit {
     pub(crate) u: f64,
     pub(crate) theta: f64,
     pub(crate) point: Point3<f64>,
+    /// The profile's unit tangent there, from the span's Bézier form, when
+    /// the derivative is clearly non-zero (`None` near a pole: the caller
+    /// then takes the limit from the profile itself).
+    pub(crate) tangent: Option<nalgebra::Unit<nalgebra::Vector2<f64>>>,
+    /// The profile's (signed) `x` there.
+    pub(crate) x: f64,
 }
 
 /// A ray in the local frame and the interval searched.
@@ -515,7 +521,18 @@ impl SpanTable {
             return None;
         }
         let (u0, u1) = self.spans[k].u;
-        let (x, y, ..) = eval(s);
+        let (x, y, dx, dy) = eval(s);
+        // Trust the span's derivative for the normal only well away from
+        // zero (relative to the span's size): near poles and cusps it is
+        // dominated by rounding and the profile's exact limit is needed.
+        let size = xs.iter().chain(ys).fold(0.0_f64, |m, c| m.max(c.abs()));
+        let tangent = nalgebra::Vector2::new(dx, dy);
+        // Only strictly inside the span and off the axis: at a span end the
+        // surface's normal is the limit from the next span, on the axis it
+        // follows the pole rules.
+        let inside = s > 1e-9 && s < 1.0 - 1e-9 && x != 0.0;
+        let tangent = (inside && tangent.norm() > 1e-6 * size)
+            .then(|| nalgebra::Unit::new_normalize(tangent));
         let theta = theta.rem_euclid(TAU) + 0.0; // no −0
         let (sn, cs) = theta.sin_cos();
         let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
@@ -524,6 +541,8 @@ impl SpanTable {
             u,
             theta,
             point: Point3::new(x * cs, y, -x * sn),
+            tangent,
+            x,
         })
     }
 }

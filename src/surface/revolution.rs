@@ -220,10 +220,13 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
         let o = self.to_world.inverse_transform_point(&ray.origin);
         let d = self.to_world.inverse_transform_vector(&ray.dir);
         let local = exact.intersect(o, d, t_min, t_max, &self.tolerance)?;
-        let normal_local = self
-            .normal_local(local.u, local.theta)
-            // No tangent plane (a cone's apex): face the ray.
-            .or_else(|| Unit::try_new(-d, 0.0))?;
+        let at_end = local.u >= self.profile.domain().1;
+        let normal_local = match local.tangent {
+            Some(t) => profile_normal(local.x, t, at_end, local.theta),
+            None => self.normal_local(local.u, local.theta),
+        }
+        // No tangent plane (a cone's apex): face the ray.
+        .or_else(|| Unit::try_new(-d, 0.0))?;
         let point = self.to_world * local.point;
         if !point.coords.iter().all(|c| c.is_finite()) {
             return None;
