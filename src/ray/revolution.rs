@@ -168,6 +168,12 @@ struct Query {
     /// Residual at which Newton stops.
     target: f64,
     max_iterations: u32,
+    /// Per-ray constants of the span culling: `1/d_y` (0 when `d_y = 0`),
+    /// `accept/|d|`, and the squared distance from the axis
+    /// `r²(t) = a t² + 2 b t + c`.
+    inv_dy: f64,
+    pad_t: f64,
+    radius: (f64, f64, f64),
 }
 
 impl SpanTable {
@@ -262,6 +268,13 @@ impl SpanTable {
             accept: (tol.relative * scale).max(floor),
             target: tol.relative * scale,
             max_iterations: tol.max_iterations,
+            inv_dy: if d.y == 0.0 { 0.0 } else { 1.0 / d.y },
+            pad_t: (tol.relative * scale).max(floor) / dn,
+            radius: (
+                d.x * d.x + d.z * d.z,
+                o.x * d.x + o.z * d.z,
+                o.x * o.x + o.z * o.z,
+            ),
         };
         // Hits within the position uncertainty of the origin are the origin
         // itself (a secondary ray leaving the surface).
@@ -661,17 +674,17 @@ fn circle_times(q: &Query, x: f64) -> [Option<f64>; 2] {
 /// `(t_floor, t_best)`), or `None` if it misses it or stays within the
 /// span's inner radius.
 fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> {
-    let (o, d) = (q.o, q.d);
+    let o = q.o;
     let pad = q.accept;
-    let (mut lo, mut hi) = (t_floor - pad / d.norm(), t_best);
+    let (mut lo, mut hi) = (t_floor - q.pad_t, t_best);
     // Height slab.
     let (y0, y1) = (span.y.0 - pad, span.y.1 + pad);
-    if d.y == 0.0 {
+    if q.inv_dy == 0.0 {
         if o.y < y0 || o.y > y1 {
             return None;
         }
     } else {
-        let (a, b) = ((y0 - o.y) / d.y, (y1 - o.y) / d.y);
+        let (a, b) = ((y0 - o.y) * q.inv_dy, (y1 - o.y) * q.inv_dy);
         lo = lo.max(a.min(b));
         hi = hi.min(a.max(b));
     }
@@ -680,15 +693,15 @@ fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> 
     }
     // Radius: the squared distance from the axis is a convex quadratic in t.
     let (r0, r1) = ((span.r.0 - pad).max(0.0), span.r.1 + pad);
-    let a = d.x * d.x + d.z * d.z;
-    let b = o.x * d.x + o.z * d.z;
-    let c = o.x * o.x + o.z * o.z;
+    let (a, b, c) = q.radius;
     let r2 = |t: f64| (a * t + 2.0 * b) * t + c;
     if a == 0.0 {
         if c > r1 * r1 || c < r0 * r0 {
             return None;
         }
     } else {
+        // Cheap rejections first: the whole slab outside the outer radius
+        // needs the root below; inside the inner radius, the convex test.
         let disc = b * b - a * (c - r1 * r1);
         if disc < 0.0 {
             return None;
