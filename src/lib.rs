@@ -84,7 +84,7 @@ pub use aabb::Aabb;
 pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
 pub use error::Error;
 pub use ray::newton::{NewtonIntersector, NewtonReport};
-pub use ray::{Hit, Intersect, Ray, Tolerance};
+pub use ray::{ExactReport, Hit, Intersect, Ray, Tolerance};
 pub use surface::BoundedSurface;
 pub use surface::{Mesh, Revolution, Surface};
 

@@ -869,3 +869,43 @@ fn tolerance_setting_is_honoured() {
         }
     }
 }
+
+/// `intersect_with_report` returns the same hit as the fast path and a
+/// report that says how it was found: a hit comes from at least one solved
+/// span, root and polished candidate with a small residual; a ray that
+/// misses the bounds enters no span.
+#[test]
+fn exact_report_describes_the_search() {
+    let glass = uniform_cubic(&GLASS);
+    let mut rng = Rng(17);
+    let (mut hits, mut misses) = (0, 0);
+    for _ in 0..300 {
+        let r = random_ray(&mut rng, Point3::origin(), Vector3::new(0.8, 1.1, 0.8), 1.0);
+        let fast = glass.intersect(&r, 0.0, INF);
+        let (hit, report) = glass.intersect_with_report(&r, 0.0, INF);
+        assert_eq!(fast, hit);
+        match hit {
+            Some(_) => {
+                hits += 1;
+                assert!(
+                    report.spans_entered >= 1 && report.spans_solved >= 1,
+                    "{report:?}"
+                );
+                assert!(report.roots >= 1 && report.candidates >= 1, "{report:?}");
+                let residual = report.residual.expect("a hit has a residual");
+                assert!(residual <= REL * 1.06, "{report:?}");
+                assert!(report.spans_solved <= report.spans_entered);
+            }
+            None => {
+                misses += 1;
+                assert_eq!(report.residual, None);
+            }
+        }
+    }
+    assert!(hits > 50 && misses > 20, "{hits} hits, {misses} misses");
+    let away = Ray::new(Point3::new(5.0, 0.0, 5.0), Vector3::new(1.0, 0.0, 0.0));
+    let (hit, report) = glass.intersect_with_report(&away, 0.0, INF);
+    assert_eq!(hit, None);
+    assert_eq!(report.spans_entered, 0);
+    assert_eq!(report.spans_solved, 0);
+}

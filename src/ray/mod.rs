@@ -8,6 +8,8 @@
 pub mod newton;
 pub(crate) mod revolution;
 
+pub use revolution::ExactReport;
+
 pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 
 use crate::Aabb;

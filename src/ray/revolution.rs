@@ -157,6 +157,27 @@ pub(crate) struct LocalHit {
     pub(crate) tangent: Option<nalgebra::Unit<nalgebra::Vector2<f64>>>,
     /// The profile's (signed) `x` there.
     pub(crate) x: f64,
+    /// `|o + t·d − S(u, θ)|` after Newton's polish.
+    pub(crate) residual: f64,
+}
+
+/// How the exact intersector finished one ray
+/// ([`Revolution::intersect_with_report`](crate::Revolution::intersect_with_report)).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ExactReport {
+    /// Spans whose bounding cylinder the ray entered (after culling).
+    pub spans_entered: u32,
+    /// Spans whose polynomial was formed and solved (the rest were passed
+    /// over because a nearer hit was already known).
+    pub spans_solved: u32,
+    /// Roots (and zero intervals) the root isolation reported.
+    pub roots: u32,
+    /// Candidate hits handed to Newton's method.
+    pub candidates: u32,
+    /// Newton iterations in total.
+    pub iterations: u32,
+    /// The residual `|o + t·d − S(u, θ)|` of the returned hit, if any.
+    pub residual: Option<f64>,
 }
 
 /// A ray in the local frame and the interval searched.
@@ -253,6 +274,7 @@ impl SpanTable {
         t_min: f64,
         t_max: f64,
         tol: &Tolerance,
+        report: &mut ExactReport,
     ) -> Option<LocalHit> {
         let dn = d.norm();
         if !(dn > 0.0 && dn.is_finite()) || o.coords.iter().any(|c| !c.is_finite()) {
@@ -288,6 +310,7 @@ impl SpanTable {
             let Some(entry) = span_entry(span, &q, t_floor, t_best) else {
                 continue;
             };
+            report.spans_entered += 1;
             if sorted < SORTED_SPANS {
                 let mut i = sorted;
                 while i > 0 && order[i - 1].0 > entry {
@@ -304,12 +327,12 @@ impl SpanTable {
             if entry >= t_best {
                 break;
             }
-            self.span_hits(k as usize, &q, t_floor, &mut t_best, &mut best);
+            self.span_hits(k as usize, &q, t_floor, &mut t_best, &mut best, report);
         }
         if overflow {
             for k in 0..self.spans.len() {
                 if !order[..sorted].iter().any(|&(_, j)| j as usize == k) {
-                    self.span_hits(k, &q, t_floor, &mut t_best, &mut best);
+                    self.span_hits(k, &q, t_floor, &mut t_best, &mut best, report);
                 }
             }
         }
@@ -328,7 +351,9 @@ impl SpanTable {
         t_floor: f64,
         t_best: &mut f64,
         best: &mut Option<LocalHit>,
+        report: &mut ExactReport,
     ) {
+        report.spans_solved += 1;
         let mut cands = Candidates::default();
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y.
@@ -340,6 +365,7 @@ impl SpanTable {
                     err = err.max(2.0 * f64::EPSILON * (y.abs() + q.o.y.abs()));
                 }
                 find_roots_to(g, err, CANDIDATE_WIDTH, |root| {
+                    report.roots += 1;
                     for s in root_samples(root) {
                         for t in self.radius_times(k, q, s) {
                             cands.push(t, s);
@@ -351,6 +377,7 @@ impl SpanTable {
             with_scratch(2 * self.degree + 1, 0.0, |f| {
                 let err = self.span_polynomial(k, q, f);
                 find_roots_to(f, err, CANDIDATE_WIDTH, |root| {
+                    report.roots += 1;
                     for s in root_samples(root) {
                         for t in self.candidate_times(k, q, s) {
                             cands.push(t, s);
@@ -370,7 +397,8 @@ impl SpanTable {
             if t < t_floor - slack {
                 continue;
             }
-            if let Some(hit) = self.polish(k, q, s, t) {
+            report.candidates += 1;
+            if let Some(hit) = self.polish(k, q, s, t, &mut report.iterations) {
                 if hit.t > t_floor && hit.t < *t_best {
                     *t_best = hit.t;
                     *best = Some(hit);
@@ -457,7 +485,14 @@ impl SpanTable {
     /// Newton's method on `o + t d − S(s, θ) = 0` for span `k` from `(s, t)`,
     /// `θ` taken from the ray point. Returns the hit if its residual is
     /// acceptable and `s` stays on the span.
-    fn polish(&self, k: usize, q: &Query, s0: f64, t0: f64) -> Option<LocalHit> {
+    fn polish(
+        &self,
+        k: usize,
+        q: &Query,
+        s0: f64,
+        t0: f64,
+        iterations: &mut u32,
+    ) -> Option<LocalHit> {
         let (xs, ys) = self.coeffs(k);
         let eval = |s: f64| {
             let (x, dx) = eval_with_derivative(xs, s).unwrap_or((0.0, 0.0));
@@ -481,6 +516,7 @@ impl SpanTable {
         let mut r = f.norm();
         let mut best = (r, s, t, theta);
         for _ in 0..q.max_iterations {
+            *iterations += 1;
             if r <= q.target {
                 break;
             }
@@ -556,6 +592,7 @@ impl SpanTable {
             point: Point3::new(x * cs, y, -x * sn),
             tangent,
             x,
+            residual: r,
         })
     }
 }

@@ -1,6 +1,6 @@
 //! Surfaces of revolution: a planar profile turned about an axis.
 
-use crate::ray::revolution::SpanTable;
+use crate::ray::revolution::{ExactReport, SpanTable};
 use crate::{Aabb, Curve, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{
     Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
@@ -66,6 +66,55 @@ impl<C: Curve<2>> Revolution<C> {
     pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
         self.tolerance = tolerance;
         self
+    }
+
+    /// As [`Intersect::intersect`], with a report of how the exact
+    /// intersector finished (spans entered and solved, roots, candidates,
+    /// Newton iterations, the hit's residual). The fast path
+    /// (`Intersect::intersect`) computes the same hit.
+    pub fn intersect_with_report(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+    ) -> (Option<Hit>, ExactReport) {
+        let mut report = ExactReport::default();
+        let hit = self.intersect_reporting(ray, t_min, t_max, &mut report);
+        if hit.is_none() {
+            report.residual = None;
+        }
+        (hit, report)
+    }
+
+    fn intersect_reporting(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        report: &mut ExactReport,
+    ) -> Option<Hit> {
+        let exact = self.exact.as_ref()?;
+        let o = self.to_world.inverse_transform_point(&ray.origin);
+        let d = self.to_world.inverse_transform_vector(&ray.dir);
+        let local = exact.intersect(o, d, t_min, t_max, &self.tolerance, report)?;
+        report.residual = Some(local.residual);
+        let at_end = local.u >= self.profile.domain().1;
+        let normal_local = match local.tangent {
+            Some(t) => profile_normal(local.x, t, at_end, local.theta),
+            None => self.normal_local(local.u, local.theta),
+        }
+        // No tangent plane (a cone's apex): face the ray.
+        .or_else(|| Unit::try_new(-d, 0.0))?;
+        let point = self.to_world * local.point;
+        if !point.coords.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        Some(Hit {
+            t: local.t,
+            point,
+            normal: Unit::new_unchecked(self.to_world.rotation * normal_local.into_inner()),
+            uv: (local.u, local.theta),
+        })
     }
 
     /// Whether [`Intersect`] runs the exact intersector on this surface (the
@@ -216,27 +265,7 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
     /// surface's patch bounds. [`Revolution::has_exact_intersector`] tells
     /// which applies.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let exact = self.exact.as_ref()?;
-        let o = self.to_world.inverse_transform_point(&ray.origin);
-        let d = self.to_world.inverse_transform_vector(&ray.dir);
-        let local = exact.intersect(o, d, t_min, t_max, &self.tolerance)?;
-        let at_end = local.u >= self.profile.domain().1;
-        let normal_local = match local.tangent {
-            Some(t) => profile_normal(local.x, t, at_end, local.theta),
-            None => self.normal_local(local.u, local.theta),
-        }
-        // No tangent plane (a cone's apex): face the ray.
-        .or_else(|| Unit::try_new(-d, 0.0))?;
-        let point = self.to_world * local.point;
-        if !point.coords.iter().all(|c| c.is_finite()) {
-            return None;
-        }
-        Some(Hit {
-            t: local.t,
-            point,
-            normal: Unit::new_unchecked(self.to_world.rotation * normal_local.into_inner()),
-            uv: (local.u, local.theta),
-        })
+        self.intersect_reporting(ray, t_min, t_max, &mut ExactReport::default())
     }
 
     fn bounds(&self) -> Aabb {
