@@ -26,7 +26,7 @@ use crate::bernstein::{binomial, eval_with_derivative};
 use crate::roots::{Root, find_roots_to};
 use crate::scratch::with_scratch;
 use crate::{BezierSpan, Tolerance};
-use nalgebra::{Matrix3, Point3, Vector3};
+use nalgebra::{Point3, Vector3};
 use std::f64::consts::TAU;
 
 /// Spans visited in sorted order; more than this are visited after, unsorted.
@@ -507,12 +507,13 @@ impl SpanTable {
         } else {
             p.z.atan2(-p.x)
         };
-        let residual = |s: f64, t: f64, theta: f64| {
+        // The residual at (s, t) for the angle's (sin, cos).
+        let residual = |s: f64, t: f64, (sn, cs): (f64, f64)| {
             let (x, y, ..) = eval(s);
-            let (sn, cs) = theta.sin_cos();
             q.o + q.d * t - Vector3::new(x * cs, y, -x * sn)
         };
-        let mut f = residual(s, t, theta);
+        let mut angle = theta.sin_cos();
+        let mut f = residual(s, t, angle);
         let mut r = f.norm();
         let mut best = (r, s, t, theta);
         for _ in 0..q.max_iterations {
@@ -521,13 +522,13 @@ impl SpanTable {
                 break;
             }
             let (x, _, dx, dy) = eval(s);
-            let (sn, cs) = theta.sin_cos();
-            let j = Matrix3::from_columns(&[
+            let (sn, cs) = angle;
+            let Some(step) = solve3(
                 q.d,
                 -Vector3::new(dx * cs, dy, -dx * sn),
                 -Vector3::new(-x * sn, 0.0, -x * cs),
-            ]);
-            let Some(step) = j.lu().solve(&(-f)) else {
+                -f,
+            ) else {
                 break;
             };
             if !step.iter().all(|v| v.is_finite()) {
@@ -536,7 +537,8 @@ impl SpanTable {
             t += step.x;
             s = (s + step.y).clamp(-0.5, 1.5);
             theta += step.z;
-            f = residual(s, t, theta);
+            angle = theta.sin_cos();
+            f = residual(s, t, angle);
             let r_new = f.norm();
             if r_new < best.0 {
                 best = (r_new, s, t, theta);
@@ -595,6 +597,30 @@ impl SpanTable {
             residual: r,
         })
     }
+}
+
+/// Solves `[c₀ c₁ c₂]·v = b` by Cramer's rule (the triple products of the
+/// columns); `None` when the matrix is singular. For the 3×3 Newton step this
+/// is a fraction of a pivoting LU's cost, and Newton's iteration corrects the
+/// slightly weaker rounding behaviour.
+#[inline]
+fn solve3(
+    c0: Vector3<f64>,
+    c1: Vector3<f64>,
+    c2: Vector3<f64>,
+    b: Vector3<f64>,
+) -> Option<Vector3<f64>> {
+    let c12 = c1.cross(&c2);
+    let det = c0.dot(&c12);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    Some(Vector3::new(
+        b.dot(&c12) * inv,
+        c0.dot(&b.cross(&c2)) * inv,
+        c0.dot(&c1.cross(&b)) * inv,
+    ))
 }
 
 /// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's
