@@ -1,7 +1,7 @@
 //! Axis-aligned bounding boxes and the slab test.
 
 use crate::ray::Ray;
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Isometry3, Point3, Vector3};
 
 /// An axis-aligned box `[min, max]` in 3D. A box with `min > max` on some axis
 /// is empty ([`Aabb::EMPTY`]); it contains nothing and no ray hits it.
@@ -60,6 +60,21 @@ impl Aabb {
         Aabb {
             min: self.min - m,
             max: self.max + m,
+        }
+    }
+
+    /// The smallest box containing this box moved by the rigid motion `m`:
+    /// the centre is moved, and the half-extents are multiplied by the
+    /// absolute rotation matrix (exact for the box of a rotated box).
+    pub fn transformed(&self, m: &Isometry3<f64>) -> Self {
+        if self.is_empty() {
+            return *self;
+        }
+        let center = m * self.center();
+        let half = m.rotation.to_rotation_matrix().matrix().abs() * (self.extent() * 0.5);
+        Aabb {
+            min: center - half,
+            max: center + half,
         }
     }
 
@@ -147,6 +162,22 @@ mod tests {
         // On the boundary plane: inside the closed slab.
         let r = Ray::new(Point3::new(-5.0, 1.0, 0.0), Vector3::new(1.0, 0.0, 0.0));
         assert_eq!(unit().clip(&r, 0.0, f64::INFINITY), Some((4.0, 6.0)));
+    }
+
+    #[test]
+    fn transformed_box_is_the_box_of_the_moved_corners() {
+        let b = Aabb::new(Point3::new(-1.0, 0.5, -2.0), Point3::new(3.0, 2.0, 1.0));
+        let m = Isometry3::new(Vector3::new(1.0, -2.0, 0.5), Vector3::new(0.3, -0.7, 1.1));
+        let corners: Vec<Point3<f64>> = (0..8)
+            .map(|i| {
+                let pick = |bit: usize, k: usize| if i & bit == 0 { b.min[k] } else { b.max[k] };
+                m * Point3::new(pick(1, 0), pick(2, 1), pick(4, 2))
+            })
+            .collect();
+        let want = Aabb::from_points(&corners);
+        let got = b.transformed(&m);
+        assert!((got.min - want.min).norm() < 1e-14 && (got.max - want.max).norm() < 1e-14);
+        assert!(Aabb::EMPTY.transformed(&m).is_empty());
     }
 
     #[test]

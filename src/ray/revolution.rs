@@ -576,7 +576,8 @@ impl SpanTable {
         // Trust the span's derivative for the normal only well away from
         // zero (relative to the span's size): near poles and cusps it is
         // dominated by rounding and the profile's exact limit is needed.
-        let size = xs.iter().chain(ys).fold(0.0_f64, |m, c| m.max(c.abs()));
+        let span = &self.spans[k];
+        let size = span.r.1.max(span.y.0.abs()).max(span.y.1.abs());
         let tangent = nalgebra::Vector2::new(dx, dy);
         // Only strictly inside the span and off the axis: at a span end the
         // surface's normal is the limit from the next span, on the axis it

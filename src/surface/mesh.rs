@@ -31,8 +31,8 @@ const MAX_ANGLE_STEPS: usize = 1 << 16;
 
 /// What [`Revolution::tessellate`] decided: the profile rings, the angular
 /// steps and the sagitta they leave.
-struct Plan<const D: usize = 2> {
-    flat: crate::Flattening<D>,
+struct Plan {
+    flat: crate::Flattening<2>,
     steps: usize,
     sagitta: f64,
 }

@@ -238,21 +238,6 @@ impl<C: Curve<2>> Surface for Revolution<C> {
     }
 }
 
-/// The world box of the local box `[−r, y₀, −r] × [r, y₁, r]` (the cylinder
-/// around the profile's radius and height ranges), conservatively: the box of
-/// its eight transformed corners.
-pub(crate) fn world_bounds(to_world: &Isometry3<f64>, r: f64, y0: f64, y1: f64) -> Aabb {
-    let mut b = Aabb::EMPTY;
-    for &x in &[-r, r] {
-        for &y in &[y0, y1] {
-            for &z in &[-r, r] {
-                b = b.include(&(to_world * Point3::new(x, y, z)));
-            }
-        }
-    }
-    b
-}
-
 impl<C: Curve<2>> Intersect for Revolution<C> {
     /// The exact intersector: the nearest hit with `t_min < t < t_max`, or
     /// `None`.
@@ -270,7 +255,12 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
 
     fn bounds(&self) -> Aabb {
         match &self.exact {
-            Some(e) => world_bounds(&self.to_world, e.r_max, e.y_range.0, e.y_range.1),
+            // The cylinder around the profile's radius and height ranges.
+            Some(e) => Aabb::new(
+                Point3::new(-e.r_max, e.y_range.0, -e.r_max),
+                Point3::new(e.r_max, e.y_range.1, e.r_max),
+            )
+            .transformed(&self.to_world),
             None => Aabb::EMPTY,
         }
     }
@@ -334,16 +324,14 @@ impl<C: Curve<2>> crate::surface::BoundedSurface for Revolution<C> {
             let pi = std::f64::consts::PI;
             add(sector_box(((-xr.1).max(0.0), -xr.0), (v0 + pi, v1 + pi)));
         }
-        let lo = Point3::new(xz.0.0, yr.0, xz.1.0);
-        let hi = Point3::new(xz.0.1, yr.1, xz.1.1);
-        let center = nalgebra::center(&lo, &hi);
-        let half = (hi - lo) * 0.5;
-        let world_center = self.to_world * center;
-        let world_half = self.to_world.rotation.to_rotation_matrix().matrix().abs() * half;
-        let local_mag = lo.coords.amax().max(hi.coords.amax());
-        let world_mag = world_center.coords.amax() + world_half.amax();
-        let pad = 16.0 * (degree as f64 + 2.0) * f64::EPSILON * (local_mag + world_mag);
-        Aabb::new(world_center - world_half, world_center + world_half).expand(pad)
+        let local = Aabb {
+            min: Point3::new(xz.0.0, yr.0, xz.1.0),
+            max: Point3::new(xz.0.1, yr.1, xz.1.1),
+        };
+        let world = local.transformed(&self.to_world);
+        let world_mag = world.center().coords.amax() + (world.extent() * 0.5).amax();
+        let pad = 16.0 * (degree as f64 + 2.0) * f64::EPSILON * (local.scale() + world_mag);
+        world.expand(pad)
     }
 
     /// The angle `θ` is periodic (period `2π`); the profile parameter is not.
