@@ -28,7 +28,7 @@
 //! root can be reported that exact arithmetic would refute (the caller
 //! verifies), but none is missed.
 
-use crate::bernstein::{eval_with_derivative, subdivide};
+use crate::bernstein::{eval, eval_with_derivative, subdivide};
 use crate::scratch::with_scratch;
 
 /// Deepest subdivision: pieces of width `2⁻⁴⁸` (about `3.6e-15`) are not split.
@@ -89,7 +89,7 @@ pub fn find_roots_to(coeffs: &[f64], error: f64, width: f64, mut found: impl FnM
         width,
     };
     let mut pending: Option<Root> = None;
-    search.piece(coeffs, 0.0, 1.0, 0, &mut |root| {
+    let mut merge = |root: Root| {
         pending = match (pending, root) {
             (None, r) => Some(r),
             // The same root seen from both sides of a split point.
@@ -112,7 +112,21 @@ pub fn find_roots_to(coeffs: &[f64], error: f64, width: f64, mut found: impl FnM
                 Some(r)
             }
         };
-    });
+    };
+    // Lengths up to 17 (degree ≤ 16) run on exactly sized arrays.
+    macro_rules! fixed {
+        ($($n:literal),*) => {
+            match coeffs.len() {
+                $($n => {
+                    if let Ok(c) = <&[f64; $n]>::try_from(coeffs) {
+                        search.piece_fixed(c, 0.0, 1.0, 0, &mut merge);
+                    }
+                })*
+                _ => search.piece(coeffs, 0.0, 1.0, 0, &mut merge),
+            }
+        };
+    }
+    fixed!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17);
     if let Some(r) = pending {
         found(r);
     }
@@ -154,6 +168,31 @@ fn classify(c: &[f64], e: f64) -> Signs {
     }
 }
 
+/// Whether every polynomial whose coefficients lie within `e` of `c` has
+/// exactly one sign change in its coefficient sequence: the ends certainly
+/// of opposite signs, a run certainly of the first sign, at most one
+/// coefficient within the noise, then a run certainly of the last sign. By
+/// the Bernstein form of Descartes' rule of signs (Lane & Riesenfeld 1981)
+/// such a polynomial has exactly one root in `(0, 1)`, and it is simple.
+fn one_sign_change(c: &[f64], e: f64) -> bool {
+    let n = c.len() - 1;
+    let (first, last) = (certain_sign(c[0], e), certain_sign(c[n], e));
+    if first * last >= 0 {
+        return false;
+    }
+    let mut i = 1;
+    while i < n && certain_sign(c[i], e) == first {
+        i += 1;
+    }
+    if i < n && certain_sign(c[i], e) == 0 {
+        i += 1;
+    }
+    while i < n && certain_sign(c[i], e) == last {
+        i += 1;
+    }
+    i == n
+}
+
 /// The sign of `x` if it is certain at error `e`, else 0.
 fn certain_sign(x: f64, e: f64) -> i8 {
     if x > e {
@@ -166,27 +205,49 @@ fn certain_sign(x: f64, e: f64) -> i8 {
 }
 
 impl Search {
-    fn piece(&self, c: &[f64], a: f64, b: f64, depth: u32, found: &mut dyn FnMut(Root)) {
+    /// Decides the piece `c` on `[a, b]` (reporting what it holds), or
+    /// returns `true` when it must be split.
+    fn settle(&self, c: &[f64], a: f64, b: f64, depth: u32, found: &mut dyn FnMut(Root)) -> bool {
         let e = self.error + self.growth * f64::from(depth + 1);
         match classify(c, e) {
-            Signs::Definite => return,
-            Signs::Zero => return found(Root::Flat { from: a, to: b }),
+            Signs::Definite => return false,
+            Signs::Zero => {
+                found(Root::Flat { from: a, to: b });
+                return false;
+            }
             Signs::Mixed => {}
+        }
+        if one_sign_change(c, e) {
+            if let Ok(u) = refine(c, a, b) {
+                found(Root::At(u));
+                return false;
+            }
         }
         let n = c.len() - 1;
         if self.monotonic(c, e) {
             let (f0, f1) = (c[0], c[n]);
             match (certain_sign(f0, e), certain_sign(f1, e)) {
-                (s0, s1) if s0 * s1 < 0 => found(Root::At(refine(c, a, b))),
+                // Monotonic: the estimate is the root even when rounding
+                // hides the signs around it.
+                (s0, s1) if s0 * s1 < 0 => found(Root::At(refine(c, a, b).unwrap_or_else(|u| u))),
                 (s0, s1) if s0 * s1 > 0 => {}
                 // An end value within the noise: the root is there (or the
                 // curve only grazes zero); report the end nearer to zero.
                 _ => found(Root::At(if f0.abs() <= f1.abs() { a } else { b })),
             }
-            return;
+            return false;
         }
         if depth >= MAX_DEPTH || b - a < self.width {
-            return found(Root::At(0.5 * (a + b)));
+            found(Root::At(0.5 * (a + b)));
+            return false;
+        }
+        true
+    }
+
+    /// The search on a piece of any length (halves in stack scratch).
+    fn piece(&self, c: &[f64], a: f64, b: f64, depth: u32, found: &mut dyn FnMut(Root)) {
+        if !self.settle(c, a, b, depth, found) {
+            return;
         }
         let mid = 0.5 * (a + b);
         with_scratch(2 * c.len(), 0.0, |buf| {
@@ -195,6 +256,26 @@ impl Search {
             self.piece(left, a, mid, depth + 1, found);
             self.piece(right, mid, b, depth + 1, found);
         });
+    }
+
+    /// The search on a piece of `N` coefficients: the halves are arrays the
+    /// compiler sizes exactly (no scratch buckets, no slice bounds).
+    fn piece_fixed<const N: usize>(
+        &self,
+        c: &[f64; N],
+        a: f64,
+        b: f64,
+        depth: u32,
+        found: &mut dyn FnMut(Root),
+    ) {
+        if !self.settle(c, a, b, depth, found) {
+            return;
+        }
+        let mid = 0.5 * (a + b);
+        let (mut left, mut right) = ([0.0; N], [0.0; N]);
+        subdivide(c, 0.5, &mut left, &mut right);
+        self.piece_fixed(&left, a, mid, depth + 1, found);
+        self.piece_fixed(&right, mid, b, depth + 1, found);
     }
 
     /// Whether the derivative's coefficients `n(cᵢ₊₁ − cᵢ)` certainly share
@@ -211,47 +292,115 @@ impl Search {
     }
 }
 
-/// The root of the monotonic polynomial piece `c` on `[a, b]`, whose end
-/// values have opposite signs: safeguarded Newton on the local parameter,
-/// falling back to bisection whenever a step leaves the bracket or stalls.
-fn refine(c: &[f64], a: f64, b: f64) -> f64 {
+/// The root of the polynomial piece `c` on `[a, b]` that has exactly one
+/// root there (end values certainly of opposite signs), by safeguarded
+/// Newton iteration on the local parameter `s`.
+///
+/// Values within the evaluation's rounding bound (`4nε·max|cᵢ|` for de
+/// Casteljau) carry no sign. The bracket `[lo, hi]` moves only on certain
+/// signs, so it always holds the root; Newton steps that leave it, or eight
+/// iterations that fail to halve it (linear convergence towards a near-touch
+/// of zero), are replaced by bisection. Once a Newton step no longer moves
+/// the root in the caller's parameter `u = a + (b − a)s`, or the value is
+/// within the noise, the root is confirmed by certain, opposite signs a
+/// little way either side.
+///
+/// `Ok(u)` is a confirmed root. `Err(u)` is the best estimate where the
+/// signs could not be confirmed: near a touch of zero within the rounding
+/// bound, the one root cannot be told from the noise (the caller then
+/// subdivides instead).
+fn refine(c: &[f64], a: f64, b: f64) -> Result<f64, f64> {
+    refine_from(c, a, b, polygon_crossing(c))
+}
+
+/// [`refine`] from the local start `s` (in `[0, 1]`).
+fn refine_from(c: &[f64], a: f64, b: f64, mut s: f64) -> Result<f64, f64> {
     let n = c.len() - 1;
-    let rising = c[n] > c[0];
+    let to_u = |s: f64| a + (b - a) * s;
+    // f·sign rises through the root.
+    let sign = if c[n] > c[0] { 1.0 } else { -1.0 };
+    let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let noise = 4.0 * n.max(1) as f64 * f64::EPSILON * scale;
+    // Which side of the root `x` certainly is: −1 before, 1 after, 0 unknown.
+    let side = |f: f64| {
+        if f * sign > noise {
+            1
+        } else if f * sign < -noise {
+            -1
+        } else {
+            0
+        }
+    };
     let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-    let resolution = 2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
-    // Start from the chord's zero: exact for a linear piece.
-    let mut s = (c[0] / (c[0] - c[n])).clamp(0.0, 1.0);
-    for _ in 0..64 {
+    let resolution = 2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE) / (b - a);
+    let mut checkpoint = hi - lo;
+    for i in 1..=128 {
         let Some((f, df)) = eval_with_derivative(c, s) else {
             break;
         };
-        if f == 0.0 {
-            lo = s;
-            hi = s;
-            break;
-        }
-        if (f > 0.0) == rising {
-            hi = s;
-        } else {
-            lo = s;
+        match side(f) {
+            1 => hi = s,
+            -1 => lo = s,
+            _ => {}
         }
         let newton = s - f / df;
-        let next = if newton > lo && newton < hi {
-            newton
+        let step = (newton - s).abs();
+        let small_step = step <= resolution.max(f64::EPSILON * s);
+        if small_step || side(f) == 0 {
+            // Confirm by certain signs either side, at a distance the noise
+            // cannot flip (at most 2⁻²⁰: farther is no confirmation).
+            let center = if small_step { newton } else { s }.clamp(lo, hi);
+            let d = (2.0 * noise / df.abs())
+                .max(4.0 * if small_step { step } else { 0.0 })
+                .max(4.0 * f64::EPSILON)
+                .min(1.0 / (1u32 << 20) as f64);
+            let (l, r) = ((center - d).max(lo), (center + d).min(hi));
+            let at = |x: f64, end: f64, known: i32| {
+                if x == end {
+                    known
+                } else {
+                    eval(c, x).map_or(0, side)
+                }
+            };
+            match (at(l, lo, -1), at(r, hi, 1)) {
+                (-1, 1) => return Ok(to_u(center)),
+                (1, _) => hi = l,
+                (_, -1) => lo = r,
+                // A sign lost in the noise on a piece that is not monotonic:
+                // the root cannot be told from a near-touch here.
+                _ => return Err(to_u(center)),
+            }
+            s = 0.5 * (lo + hi);
         } else {
-            0.5 * (lo + hi)
-        };
-        // Done once the step no longer changes the root in the caller's
-        // parameter u = a + (b − a)s (a Newton step near the root also
-        // bounds the remaining error), or the bracket has collapsed.
-        let step = (b - a) * (next - s).abs();
-        s = next;
-        if step <= resolution || hi - lo <= f64::EPSILON {
-            break;
+            let stalled = i % 8 == 0 && hi - lo > 0.5 * checkpoint;
+            if i % 8 == 0 {
+                checkpoint = hi - lo;
+            }
+            s = if newton >= lo && newton <= hi && !stalled {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+        }
+        if hi - lo <= 2.0 * f64::EPSILON {
+            // Certain signs at both ends of a collapsed bracket.
+            return Ok(to_u(0.5 * (lo + hi)));
         }
     }
-    let s = s.clamp(lo, hi);
-    a + (b - a) * s
+    Err(to_u(s.clamp(lo, hi)))
+}
+
+/// Where the control polygon `(i/n, cᵢ)` first crosses zero (0 if it does
+/// not).
+fn polygon_crossing(c: &[f64]) -> f64 {
+    let n = (c.len() - 1) as f64;
+    for (i, w) in c.windows(2).enumerate() {
+        if (w[0] > 0.0) != (w[1] > 0.0) {
+            let step = w[0] / (w[0] - w[1]);
+            return ((i as f64 + if step.is_finite() { step } else { 0.0 }) / n).clamp(0.0, 1.0);
+        }
+    }
+    0.0
 }
 
 #[cfg(test)]
@@ -366,5 +515,54 @@ mod tests {
         let got = intervals(&roots_of(&from_roots(&want), 0.0));
         assert_eq!(got.len(), want.len(), "{got:?}");
         assert_matches(&got, &want, 1e-12);
+    }
+
+    #[test]
+    fn one_sign_change_allows_one_uncertain_coefficient_only() {
+        let e = 0.1;
+        assert!(one_sign_change(&[1.0, 1.0, 0.05, -1.0], e));
+        assert!(one_sign_change(&[-1.0, 1.0, 1.0], e));
+        // Two coefficients in the noise could be +, − between the runs.
+        assert!(!one_sign_change(&[1.0, 0.05, -0.05, -1.0], e));
+        assert!(!one_sign_change(&[1.0, -1.0, 1.0, -1.0], e));
+        // An end in the noise is never certain.
+        assert!(!one_sign_change(&[0.05, -1.0, -1.0], e));
+        assert!(!one_sign_change(&[1.0, 1.0], e));
+    }
+
+    #[test]
+    fn a_near_touch_is_not_taken_for_the_root() {
+        // (u − 0.2)·((u − 0.7)² + δ): one root at 0.2, and near 0.7 the
+        // polynomial almost touches zero, where Newton's steps are tiny.
+        for delta in [1e-6, 1e-12, 1e-20, 1e-28] {
+            let mut c = from_roots(&[0.7, 0.7]);
+            // Adding δ to every coefficient adds δ (partition of unity).
+            c.iter_mut().for_each(|x| *x += delta);
+            let lin = from_roots(&[0.2]);
+            // Product of a quadratic and a linear Bernstein form (degree 3).
+            let bin = crate::bernstein::binomial;
+            let mut p = vec![0.0; 4];
+            for (i, ci) in c.iter().enumerate() {
+                for (j, lj) in lin.iter().enumerate() {
+                    p[i + j] += bin(2, i) * bin(1, j) / bin(3, i + j) * ci * lj;
+                }
+            }
+            // (Below rounding, δ leaves a numerical double root at 0.7 that
+            // the search rightly reports too.)
+            if delta >= 1e-12 {
+                let got = intervals(&roots_of(&p, 0.0));
+                assert_matches(&got, &[0.2], 1e-12);
+            }
+            // And the refinement alone, from anywhere, gives the root.
+            for k in 0..=1000 {
+                let s0 = 0.69 + 0.02 * f64::from(k) / 1000.0;
+                // Confirmed at 0.2, or (only where δ is below the rounding
+                // of evaluation) declined so that the caller subdivides.
+                match refine_from(&p, 0.0, 1.0, s0) {
+                    Ok(u) => assert!((u - 0.2).abs() < 1e-12, "δ = {delta}, from {s0}: {u}"),
+                    Err(u) => assert!(delta < 1e-15, "δ = {delta}, from {s0}: declined at {u}"),
+                }
+            }
+        }
     }
 }

@@ -190,11 +190,12 @@ struct Query {
     target: f64,
     max_iterations: u32,
     /// Per-ray constants of the span culling: `1/d_y` (0 when `d_y = 0`),
-    /// `accept/|d|`, and the squared distance from the axis
-    /// `r²(t) = a t² + 2 b t + c`.
+    /// `accept/|d|`, the squared distance from the axis
+    /// `r²(t) = a t² + 2 b t + c`, and where it is least (`−b/a`, or 0).
     inv_dy: f64,
     pad_t: f64,
     radius: (f64, f64, f64),
+    t_closest: f64,
 }
 
 impl SpanTable {
@@ -297,6 +298,12 @@ impl SpanTable {
                 o.x * d.x + o.z * d.z,
                 o.x * o.x + o.z * o.z,
             ),
+            t_closest: 0.0,
+        };
+        let (a, b, _) = q.radius;
+        let q = Query {
+            t_closest: if a > 0.0 { -b / a } else { 0.0 },
+            ..q
         };
         // Hits within the position uncertainty of the origin are the origin
         // itself (a secondary ray leaving the surface).
@@ -410,39 +417,28 @@ impl SpanTable {
     /// Writes the `2n + 1` Bernstein coefficients of `f` for span `k` into
     /// `f` and returns a bound on their rounding error.
     fn span_polynomial(&self, k: usize, q: &Query, f: &mut [f64]) -> f64 {
-        let n = self.degree;
-        let w = n + 1;
-        let (xs, ys) = self.coeffs(k);
-        let (o, d) = (q.o, q.d);
-        let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
-        f.fill(0.0);
-        // aᵢ, bᵢ, cᵢ, and the largest magnitudes of the terms that form
-        // them (for the rounding bound).
-        with_scratch(3 * w, 0.0, |abc| {
-            let (mut ma, mut mb, mut mc) = (0.0_f64, 0.0_f64, 0.0_f64);
-            for i in 0..w {
-                let h = ys[i] - o.y;
-                abc[3 * i] = oxdy + h * d.x;
-                abc[3 * i + 1] = ozdy + h * d.z;
-                abc[3 * i + 2] = d.y * xs[i];
-                ma = ma.max(oxdy.abs() + (h * d.x).abs());
-                mb = mb.max(ozdy.abs() + (h * d.z).abs());
-                mc = mc.max(abc[3 * i + 2].abs());
-            }
-            // f_k = Σ_{i+j=k} wᵢⱼ (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ), symmetric in i, j.
-            for i in 0..w {
-                let (ai, bi, ci) = (abc[3 * i], abc[3 * i + 1], abc[3 * i + 2]);
-                f[2 * i] += self.weights[i * w + i] * (ai * ai + bi * bi - ci * ci);
-                for j in i + 1..w {
-                    let (aj, bj, cj) = (abc[3 * j], abc[3 * j + 1], abc[3 * j + 2]);
-                    f[i + j] += 2.0 * self.weights[i * w + j] * (ai * aj + bi * bj - ci * cj);
+        // Degrees up to 5 run on exactly sized arrays (unrolled loops).
+        macro_rules! fixed {
+            ($($w:literal),*) => {
+                match self.degree + 1 {
+                    $($w => {
+                        let (xs, ys) = self.coeffs(k);
+                        if let (Ok(xs), Ok(ys)) = (<&[f64; $w]>::try_from(xs), <&[f64; $w]>::try_from(ys)) {
+                            return products::<$w>(xs, ys, &self.weights, q, f);
+                        }
+                    })*
+                    _ => {}
                 }
-            }
-            // Σ_{i+j=k} wᵢⱼ = 1 (Vandermonde), so every coefficient is a
-            // weighted mean of terms bounded by ma² + mb² + mc². The inputs
-            // carry up to 3ε relative error, products and the three terms
-            // add 3ε, the n + 1 sums (n + 1)ε: (n + 8)ε covers them.
-            (n + 8) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
+            };
+        }
+        fixed!(2, 3, 4, 5, 6);
+        let (xs, ys) = self.coeffs(k);
+        let w = xs.len();
+        with_scratch(3 * w, 0.0, |abc| {
+            let (a, rest) = abc.split_at_mut(w);
+            let (b, c) = rest.split_at_mut(w);
+            let m = span_terms(xs, ys, q, a, b, c);
+            products_into(a, b, c, m, &self.weights, f)
         })
     }
 
@@ -600,6 +596,75 @@ impl SpanTable {
     }
 }
 
+/// The Bernstein coefficients `aᵢ`, `bᵢ`, `cᵢ` of `A`, `B` and `d_y·x` for
+/// one span (see the module docs), and the largest magnitudes of the terms
+/// that form them (`|o_x d_y| + |h d_x|` and so on: with cancellation the
+/// rounding error is relative to those, not to the result).
+#[inline(always)]
+fn span_terms(
+    xs: &[f64],
+    ys: &[f64],
+    q: &Query,
+    a: &mut [f64],
+    b: &mut [f64],
+    c: &mut [f64],
+) -> [f64; 3] {
+    let (o, d) = (q.o, q.d);
+    let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
+    let mut m = [0.0_f64; 3];
+    for i in 0..xs.len() {
+        let h = ys[i] - o.y;
+        a[i] = oxdy + h * d.x;
+        b[i] = ozdy + h * d.z;
+        c[i] = d.y * xs[i];
+        m[0] = m[0].max(oxdy.abs() + (h * d.x).abs());
+        m[1] = m[1].max(ozdy.abs() + (h * d.z).abs());
+        m[2] = m[2].max(c[i].abs());
+    }
+    m
+}
+
+/// `f_k = Σ_{i+j=k} wᵢⱼ (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ)` into `f` (length `2n + 1`)
+/// and the bound on its rounding error.
+///
+/// `Σ_{i+j=k} wᵢⱼ = 1` (Vandermonde), so every coefficient is a weighted mean
+/// of terms bounded by `m₀² + m₁² + m₂²` (`m` from [`span_terms`]). The
+/// inputs carry up to 3ε error relative to `m`, products and the three
+/// terms add 3ε, the `n + 1` sums `(n + 1)ε`: `(n + 8)ε` covers them.
+#[inline(always)]
+fn products_into(
+    a: &[f64],
+    b: &[f64],
+    c: &[f64],
+    [ma, mb, mc]: [f64; 3],
+    weights: &[f64],
+    f: &mut [f64],
+) -> f64 {
+    let w = a.len();
+    f.fill(0.0);
+    for i in 0..w {
+        f[2 * i] += weights[i * w + i] * (a[i] * a[i] + b[i] * b[i] - c[i] * c[i]);
+        for j in i + 1..w {
+            f[i + j] += 2.0 * weights[i * w + j] * (a[i] * a[j] + b[i] * b[j] - c[i] * c[j]);
+        }
+    }
+    (w + 7) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
+}
+
+/// [`span_terms`] and [`products_into`] for spans of `W` coefficients.
+#[inline(always)]
+fn products<const W: usize>(
+    xs: &[f64; W],
+    ys: &[f64; W],
+    weights: &[f64],
+    q: &Query,
+    f: &mut [f64],
+) -> f64 {
+    let (mut a, mut b, mut c) = ([0.0; W], [0.0; W], [0.0; W]);
+    let m = span_terms(xs, ys, q, &mut a, &mut b, &mut c);
+    products_into(&a, &b, &c, m, &weights[..W * W], &mut f[..2 * W - 1])
+}
+
 /// Solves `[c₀ c₁ c₂]·v = b` by Cramer's rule (the triple products of the
 /// columns); `None` when the matrix is singular. For the 3×3 Newton step this
 /// is a fraction of a pivoting LU's cost, and Newton's iteration corrects the
@@ -737,6 +802,13 @@ fn circle_times(q: &Query, x: f64) -> [Option<f64>; 2] {
 /// Where the ray enters span's bounding cylinder (clipped to
 /// `(t_floor, t_best)`), or `None` if it misses it or stays within the
 /// span's inner radius.
+///
+/// The height slab gives an interval of `t`; on it the squared distance
+/// from the axis `r²(t)` is convex, so the span is missed when `r²` at the
+/// closest approach (clamped to the interval) exceeds the outer radius, or
+/// when both ends lie inside the inner radius. Only spans that pass get the
+/// square root that moves the entry to the outer cylinder.
+#[inline]
 fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> {
     let o = q.o;
     let pad = q.accept;
@@ -749,36 +821,50 @@ fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> 
         }
     } else {
         let (a, b) = ((y0 - o.y) * q.inv_dy, (y1 - o.y) * q.inv_dy);
-        lo = lo.max(a.min(b));
-        hi = hi.min(a.max(b));
+        let (near, far) = if a < b { (a, b) } else { (b, a) };
+        if near > lo {
+            lo = near;
+        }
+        if far < hi {
+            hi = far;
+        }
     }
     if lo > hi {
         return None;
     }
-    // Radius: the squared distance from the axis is a convex quadratic in t.
-    let (r0, r1) = ((span.r.0 - pad).max(0.0), span.r.1 + pad);
-    let (a, b, c) = q.radius;
-    let r2 = |t: f64| (a * t + 2.0 * b) * t + c;
-    if a == 0.0 {
-        if c > r1 * r1 || c < r0 * r0 {
-            return None;
-        }
+    // r²(t) as the squared length of the ray point's horizontal part: no
+    // cancellation between large terms for distant origins.
+    let r2 = |t: f64| {
+        let (x, z) = (o.x + t * q.d.x, o.z + t * q.d.z);
+        x * x + z * z
+    };
+    let outer = span.r.1 + pad;
+    let outer2 = outer * outer;
+    // (Plain comparisons rather than `clamp`/`max`: no NaN reaches here,
+    // and this loop runs for every span.)
+    let closest = if q.t_closest < lo {
+        lo
+    } else if q.t_closest > hi {
+        hi
     } else {
-        // Cheap rejections first: the whole slab outside the outer radius
-        // needs the root below; inside the inner radius, the convex test.
-        let disc = b * b - a * (c - r1 * r1);
-        if disc < 0.0 {
-            return None;
-        }
-        let s = disc.sqrt();
-        lo = lo.max((-b - s) / a);
-        hi = hi.min((-b + s) / a);
-        if lo > hi {
-            return None;
-        }
-        // Convex: if both ends are inside the inner radius, all of it is.
-        if r0 > 0.0 && r2(lo) < r0 * r0 && r2(hi) < r0 * r0 {
-            return None;
+        q.t_closest
+    };
+    if r2(closest) > outer2 {
+        return None;
+    }
+    let inner = span.r.0 - pad;
+    if inner > 0.0 && r2(lo) < inner * inner && r2(hi) < inner * inner {
+        return None;
+    }
+    // Enter at the outer cylinder when the slab starts outside it.
+    let (a, b, c) = q.radius;
+    if a > 0.0 && r2(lo) > outer2 {
+        let disc = b * b - a * (c - outer2);
+        if disc > 0.0 {
+            let enter = (-b - disc.sqrt()) / a;
+            if enter > lo {
+                lo = enter;
+            }
         }
     }
     Some(lo)
