@@ -478,9 +478,17 @@ impl SpanTable {
         circle_times(q, x).into_iter().flatten()
     }
 
-    /// Newton's method on `o + t d − S(s, θ) = 0` for span `k` from `(s, t)`,
-    /// `θ` taken from the ray point. Returns the hit if its residual is
-    /// acceptable and `s` stays on the span.
+    /// Newton's method on `o + t d − S(s, θ) = 0` for span `k` from `(s, t)`.
+    /// Returns the hit if its residual is acceptable and `s` stays on the
+    /// span.
+    ///
+    /// The angle is eliminated exactly: for the ray point `p(t)` at distance
+    /// `ρ(t) = |p_xz|` from the axis, the nearest point of the circle
+    /// `S(s, ·)` is the one in `p`'s direction, so
+    /// `|p(t) − S(s, θ(t))|² = (ρ(t) − |x(s)|)² + (p_y(t) − y(s))²` and Newton
+    /// runs on the 2 × 2 system `ρ(t) = |x(s)|`, `p_y(t) = y(s)` in the
+    /// meridian plane, with `ρ′ = (p_xz · d_xz)/ρ`. No trigonometry per
+    /// iteration; `θ` is one `atan2` at the end.
     fn polish(
         &self,
         k: usize,
@@ -495,70 +503,64 @@ impl SpanTable {
             let (y, dy) = eval_with_derivative(ys, s).unwrap_or((0.0, 0.0));
             (x, y, dx, dy)
         };
+        // The meridian-plane residual (ρ − |x|, p_y − y) at (s, t), with ρ,
+        // the profile there and the ray point.
+        let residual = |s: f64, t: f64| {
+            let (x, y, dx, dy) = eval(s);
+            let p = q.o + q.d * t;
+            let rho = p.x.hypot(p.z);
+            ((rho - x.abs(), p.y - y), rho, (x, dx, dy), p)
+        };
         let (mut s, mut t) = (s0, t0);
-        let p = q.o + q.d * t;
-        let (x0, ..) = eval(s);
-        let mut theta = if x0 >= 0.0 {
-            (-p.z).atan2(p.x)
-        } else {
-            p.z.atan2(-p.x)
-        };
-        // The residual at (s, t) for the angle's (sin, cos).
-        let residual = |s: f64, t: f64, (sn, cs): (f64, f64)| {
-            let (x, y, ..) = eval(s);
-            q.o + q.d * t - Vector3::new(x * cs, y, -x * sn)
-        };
-        let mut angle = theta.sin_cos();
-        let mut f = residual(s, t, angle);
-        let mut r = f.norm();
-        let mut best = (r, s, t, theta);
+        let (mut f, mut rho, mut profile, mut p) = residual(s, t);
+        let mut r = f.0.hypot(f.1);
+        let mut best = (r, s, t);
         for _ in 0..q.max_iterations {
             *iterations += 1;
-            if r <= q.target {
+            if r <= q.target || rho == 0.0 {
                 break;
             }
-            let (x, _, dx, dy) = eval(s);
-            let (sn, cs) = angle;
-            let Some(step) = solve3(
-                q.d,
-                -Vector3::new(dx * cs, dy, -dx * sn),
-                -Vector3::new(-x * sn, 0.0, -x * cs),
-                -f,
-            ) else {
-                break;
-            };
-            if !step.iter().all(|v| v.is_finite()) {
+            let (x, dx, dy) = profile;
+            let sigma = if x < 0.0 { -1.0 } else { 1.0 };
+            // J = [[ρ′, −σx′], [d_y, −y′]] acting on (Δt, Δs).
+            let drho = (p.x * q.d.x + p.z * q.d.z) / rho;
+            let (j00, j01, j10, j11) = (drho, -sigma * dx, q.d.y, -dy);
+            let det = j00 * j11 - j01 * j10;
+            if det == 0.0 || !det.is_finite() {
                 break;
             }
-            t += step.x;
-            s = (s + step.y).clamp(-0.5, 1.5);
-            theta += step.z;
-            angle = theta.sin_cos();
-            f = residual(s, t, angle);
-            let r_new = f.norm();
+            let step_t = (-f.0 * j11 + f.1 * j01) / det;
+            let step_s = (-f.1 * j00 + f.0 * j10) / det;
+            if !(step_t.is_finite() && step_s.is_finite()) {
+                break;
+            }
+            t += step_t;
+            s = (s + step_s).clamp(-0.5, 1.5);
+            (f, rho, profile, p) = residual(s, t);
+            let r_new = f.0.hypot(f.1);
             if r_new < best.0 {
-                best = (r_new, s, t, theta);
+                best = (r_new, s, t);
             }
             if r_new >= r {
                 break;
             }
             r = r_new;
         }
-        // On the axis (a pole or an apex) ∂S/∂θ vanishes and the Jacobian is
-        // singular, so Newton stalls a little off. There the hit is where the
-        // ray meets the axis point (0, y(s*), 0) with x(s*) = 0: solve that
-        // directly and keep it if it fits better.
+        // On the axis (a pole or an apex) the system is singular, so Newton
+        // stalls a little off. There the hit is where the ray meets the axis
+        // point (0, y(s*), 0) with x(s*) = 0: solve that directly and keep it
+        // if it fits better.
         if q.d.y != 0.0 && eval(best.1).0.abs() <= 1e-6 * self.scale {
             if let Some(s_axis) = axis_root(xs, best.1) {
                 let (_, y, ..) = eval(s_axis);
                 let t_axis = (y - q.o.y) / q.d.y;
                 let r_axis = (q.o + q.d * t_axis - Vector3::new(0.0, y, 0.0)).norm();
                 if r_axis < best.0 {
-                    best = (r_axis, s_axis, t_axis, best.3);
+                    best = (r_axis, s_axis, t_axis);
                 }
             }
         }
-        let (r, s, t, theta) = best;
+        let (r, s, t) = best;
         // A hit at a span join may converge a rounding error past the
         // span's end: the point is kept as Newton found it and only u is
         // moved into the profile's domain.
@@ -581,8 +583,18 @@ impl SpanTable {
         let inside = s > 1e-9 && s < 1.0 - 1e-9 && x != 0.0;
         let tangent = (inside && tangent.norm() > 1e-6 * size)
             .then(|| nalgebra::Unit::new_normalize(tangent));
-        let theta = theta.rem_euclid(TAU) + 0.0; // no −0
-        let (sn, cs) = theta.sin_cos();
+        // The surface point in the ray point's direction from the axis
+        // (θ = 0 on the axis), S = (x cos θ, y, −x sin θ): for x < 0 the
+        // point is |x| in p's direction, at θ + π.
+        let p = q.o + q.d * t;
+        let rho = p.x.hypot(p.z);
+        let (cs, sn) = if rho > 0.0 {
+            let sigma = if x < 0.0 { -1.0 } else { 1.0 };
+            (sigma * p.x / rho, -sigma * p.z / rho)
+        } else {
+            (1.0, 0.0)
+        };
+        let theta = sn.atan2(cs).rem_euclid(TAU) + 0.0; // no −0
         let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
         Some(LocalHit {
             t,
@@ -663,30 +675,6 @@ fn products<const W: usize>(
     let (mut a, mut b, mut c) = ([0.0; W], [0.0; W], [0.0; W]);
     let m = span_terms(xs, ys, q, &mut a, &mut b, &mut c);
     products_into(&a, &b, &c, m, &weights[..W * W], &mut f[..2 * W - 1])
-}
-
-/// Solves `[c₀ c₁ c₂]·v = b` by Cramer's rule (the triple products of the
-/// columns); `None` when the matrix is singular. For the 3×3 Newton step this
-/// is a fraction of a pivoting LU's cost, and Newton's iteration corrects the
-/// slightly weaker rounding behaviour.
-#[inline]
-fn solve3(
-    c0: Vector3<f64>,
-    c1: Vector3<f64>,
-    c2: Vector3<f64>,
-    b: Vector3<f64>,
-) -> Option<Vector3<f64>> {
-    let c12 = c1.cross(&c2);
-    let det = c0.dot(&c12);
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let inv = 1.0 / det;
-    Some(Vector3::new(
-        b.dot(&c12) * inv,
-        c0.dot(&b.cross(&c2)) * inv,
-        c0.dot(&c1.cross(&b)) * inv,
-    ))
 }
 
 /// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's
