@@ -34,6 +34,11 @@ use crate::scratch::with_scratch;
 /// Deepest subdivision: pieces of width `2⁻⁴⁸` (about `3.6e-15`) are not split.
 const MAX_DEPTH: u32 = 48;
 
+/// Pieces this deep try the convexity rule ([`Search::convex`]): shallower
+/// ones, which hold two well-separated roots more often than a near-double
+/// one, are cheaper to halve.
+const CONVEX_DEPTH: u32 = 3;
+
 /// One root (or zero set) found by [`find_roots`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Root {
@@ -218,7 +223,7 @@ impl Search {
             Signs::Mixed => {}
         }
         if one_sign_change(c, e) {
-            if let Ok(u) = refine(c, a, b) {
+            if let Ok(u) = refine(c, a, b, self.width) {
                 found(Root::At(u));
                 return false;
             }
@@ -229,12 +234,17 @@ impl Search {
             match (certain_sign(f0, e), certain_sign(f1, e)) {
                 // Monotonic: the estimate is the root even when rounding
                 // hides the signs around it.
-                (s0, s1) if s0 * s1 < 0 => found(Root::At(refine(c, a, b).unwrap_or_else(|u| u))),
+                (s0, s1) if s0 * s1 < 0 => {
+                    found(Root::At(refine(c, a, b, self.width).unwrap_or_else(|u| u)))
+                }
                 (s0, s1) if s0 * s1 > 0 => {}
                 // An end value within the noise: the root is there (or the
                 // curve only grazes zero); report the end nearer to zero.
                 _ => found(Root::At(if f0.abs() <= f1.abs() { a } else { b })),
             }
+            return false;
+        }
+        if depth >= CONVEX_DEPTH && self.convex(c, a, b, e, found) {
             return false;
         }
         if depth >= MAX_DEPTH || b - a < self.width {
@@ -278,6 +288,96 @@ impl Search {
         self.piece_fixed(&right, mid, b, depth + 1, found);
     }
 
+    /// Decides a piece that is certainly convex or concave (second
+    /// differences `cᵢ₊₂ − 2cᵢ₊₁ + cᵢ`, known to within `4e`, of one sign),
+    /// reporting its roots; `false` when it is not such a piece or its
+    /// critical point cannot be isolated.
+    ///
+    /// With `g = ±f` convex, `g′` rises through one critical point `s*`
+    /// (refined from the derivative's coefficients) and `g` has at most two
+    /// roots, one on each side of its minimum. The minimum is at least
+    /// `g(ŝ) − |g′(ŝ)|` at the computed `ŝ` (a convex function lies above its
+    /// tangents, and `|s − ŝ| ≤ 1`), less the errors:
+    /// - that bound certainly positive: no root (a ray that passes a
+    ///   silhouette closely, decided at once instead of by thirty halvings);
+    /// - `g(ŝ)` certainly negative: one root on each side whose end value is
+    ///   certainly positive (refined on that monotonic side), a root within
+    ///   the noise at an end whose value is uncertain;
+    /// - otherwise the minimum is within the noise of zero: one (near-)double
+    ///   root at `ŝ`, the grazing contact.
+    fn convex(&self, c: &[f64], a: f64, b: f64, e: f64, found: &mut dyn FnMut(Root)) -> bool {
+        let n = c.len() - 1;
+        if n < 2 {
+            return false;
+        }
+        let (lo2, hi2) = c
+            .windows(3)
+            .map(|w| w[2] - 2.0 * w[1] + w[0])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
+                (lo.min(d), hi.max(d))
+            });
+        let sigma = if lo2 > 4.0 * e {
+            1.0
+        } else if hi2 < -4.0 * e {
+            -1.0
+        } else {
+            return false;
+        };
+        let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let noise = 4.0 * n as f64 * f64::EPSILON * scale;
+        // The critical point: the one root of the rising g′ (its ends must
+        // certainly differ in sign, else the piece is monotonic or unclear).
+        let critical = with_scratch(n, 0.0, |d| {
+            for (di, w) in d.iter_mut().zip(c.windows(2)) {
+                *di = sigma * n as f64 * (w[1] - w[0]);
+            }
+            let de = 2.0 * n as f64 * e + noise;
+            if !(d[0] < -de && d[n - 1] > de) {
+                return None;
+            }
+            Some(refine(d, 0.0, 1.0, 0.0).unwrap_or_else(|s| s))
+        });
+        let Some(s_star) = critical else {
+            return false;
+        };
+        let Some((m, dm)) = eval_with_derivative(c, s_star) else {
+            return false;
+        };
+        let (gm, slope) = (sigma * m, dm.abs() + 2.0 * n as f64 * (e + noise));
+        let value_error = e + noise;
+        if gm - slope - value_error > 0.0 {
+            return true;
+        }
+        let to_u = |s: f64| a + (b - a) * s;
+        if gm < -value_error {
+            let (g0, g1) = (sigma * c[0], sigma * c[n]);
+            // Left of the minimum g falls, right of it g rises.
+            match certain_sign(g0, e) {
+                1 => {
+                    let start = s_star * g0 / (g0 - gm);
+                    let root =
+                        refine_within(c, a, b, self.width, (0.0, s_star), sigma < 0.0, start);
+                    found(Root::At(root.unwrap_or_else(|u| u)));
+                }
+                0 => found(Root::At(a)),
+                _ => {}
+            }
+            match certain_sign(g1, e) {
+                1 => {
+                    let start = s_star + (1.0 - s_star) * (-gm) / (g1 - gm);
+                    let root =
+                        refine_within(c, a, b, self.width, (s_star, 1.0), sigma > 0.0, start);
+                    found(Root::At(root.unwrap_or_else(|u| u)));
+                }
+                0 => found(Root::At(b)),
+                _ => {}
+            }
+            return true;
+        }
+        found(Root::At(to_u(s_star)));
+        true
+    }
+
     /// Whether the derivative's coefficients `n(cᵢ₊₁ − cᵢ)` certainly share
     /// one sign (each difference is known to within `2e`).
     fn monotonic(&self, c: &[f64], e: f64) -> bool {
@@ -301,24 +401,41 @@ impl Search {
 /// signs, so it always holds the root; Newton steps that leave it, or eight
 /// iterations that fail to halve it (linear convergence towards a near-touch
 /// of zero), are replaced by bisection. Once a Newton step no longer moves
-/// the root in the caller's parameter `u = a + (b − a)s`, or the value is
-/// within the noise, the root is confirmed by certain, opposite signs a
+/// the root in the caller's parameter `u = a + (b − a)s` (or moves it less
+/// than `done`: a caller that polishes the root itself; the Newton point
+/// after such a step is already accurate to about its square), or the value
+/// is within the noise, the root is confirmed by certain, opposite signs a
 /// little way either side.
 ///
 /// `Ok(u)` is a confirmed root. `Err(u)` is the best estimate where the
 /// signs could not be confirmed: near a touch of zero within the rounding
 /// bound, the one root cannot be told from the noise (the caller then
 /// subdivides instead).
-fn refine(c: &[f64], a: f64, b: f64) -> Result<f64, f64> {
-    refine_from(c, a, b, polygon_crossing(c))
+fn refine(c: &[f64], a: f64, b: f64, done: f64) -> Result<f64, f64> {
+    refine_from(c, a, b, done, polygon_crossing(c))
 }
 
 /// [`refine`] from the local start `s` (in `[0, 1]`).
-fn refine_from(c: &[f64], a: f64, b: f64, mut s: f64) -> Result<f64, f64> {
+fn refine_from(c: &[f64], a: f64, b: f64, done: f64, s: f64) -> Result<f64, f64> {
+    let rising = c[c.len() - 1] > c[0];
+    refine_within(c, a, b, done, (0.0, 1.0), rising, s)
+}
+
+/// [`refine`] on the local bracket `bracket` (whose ends certainly have
+/// opposite signs, rising or falling through the one root) from `s`.
+fn refine_within(
+    c: &[f64],
+    a: f64,
+    b: f64,
+    done: f64,
+    bracket: (f64, f64),
+    rising: bool,
+    mut s: f64,
+) -> Result<f64, f64> {
     let n = c.len() - 1;
     let to_u = |s: f64| a + (b - a) * s;
     // f·sign rises through the root.
-    let sign = if c[n] > c[0] { 1.0 } else { -1.0 };
+    let sign = if rising { 1.0 } else { -1.0 };
     let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let noise = 4.0 * n.max(1) as f64 * f64::EPSILON * scale;
     // Which side of the root `x` certainly is: −1 before, 1 after, 0 unknown.
@@ -331,8 +448,9 @@ fn refine_from(c: &[f64], a: f64, b: f64, mut s: f64) -> Result<f64, f64> {
             0
         }
     };
-    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-    let resolution = 2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE) / (b - a);
+    let (mut lo, mut hi) = bracket;
+    let resolution = (2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE) / (b - a))
+        .max(done / (b - a));
     let mut checkpoint = hi - lo;
     for i in 1..=128 {
         let Some((f, df)) = eval_with_derivative(c, s) else {
@@ -349,9 +467,11 @@ fn refine_from(c: &[f64], a: f64, b: f64, mut s: f64) -> Result<f64, f64> {
         if small_step || side(f) == 0 {
             // Confirm by certain signs either side, at a distance the noise
             // cannot flip (at most 2⁻²⁰: farther is no confirmation).
-            let center = if small_step { newton } else { s }.clamp(lo, hi);
-            let d = (2.0 * noise / df.abs())
-                .max(4.0 * if small_step { step } else { 0.0 })
+            let noise_width = 2.0 * noise / df.abs();
+            let trust_newton = small_step || step <= noise_width;
+            let center = if trust_newton { newton } else { s }.clamp(lo, hi);
+            let d = noise_width
+                .max(4.0 * if trust_newton { step } else { 0.0 })
                 .max(4.0 * f64::EPSILON)
                 .min(1.0 / (1u32 << 20) as f64);
             let (l, r) = ((center - d).max(lo), (center + d).min(hi));
@@ -558,11 +678,48 @@ mod tests {
                 let s0 = 0.69 + 0.02 * f64::from(k) / 1000.0;
                 // Confirmed at 0.2, or (only where δ is below the rounding
                 // of evaluation) declined so that the caller subdivides.
-                match refine_from(&p, 0.0, 1.0, s0) {
+                match refine_from(&p, 0.0, 1.0, 0.0, s0) {
                     Ok(u) => assert!((u - 0.2).abs() < 1e-12, "δ = {delta}, from {s0}: {u}"),
                     Err(u) => assert!(delta < 1e-15, "δ = {delta}, from {s0}: declined at {u}"),
                 }
             }
+        }
+    }
+
+    #[test]
+    fn convex_and_concave_pieces() {
+        for (r0, r1) in [
+            (0.3, 0.35),
+            (0.1, 0.9),
+            (0.5, 0.5 + 1e-6),
+            (0.0, 0.4),
+            (0.6, 1.0),
+        ] {
+            for sign in [1.0, -1.0] {
+                let c: Vec<f64> = from_roots(&[r0, r1]).iter().map(|x| sign * x).collect();
+                let got = intervals(&roots_of(&c, 0.0));
+                assert_eq!(got.len(), 2, "{r0}, {r1}: {got:?}");
+                // The roots are conditioned by the slope |r₁ − r₀| there:
+                // evaluation noise 4nε·max|cᵢ| moves them by that over it.
+                let noise = 8.0 * f64::EPSILON * c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                assert_matches(&got, &[r0, r1], (noise / (r1 - r0)).max(1e-14));
+            }
+        }
+        // A quartic with no root in [0, 1] beyond a close approach from above.
+        for lift in [1e-4, 1e-8, 1e-12] {
+            let mut c = from_roots(&[0.3, 0.3, -2.0, 3.0]);
+            let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            // The quartic is negative on [0, 1]: flip it and lift it.
+            c.iter_mut().for_each(|x| *x = -*x + lift * scale);
+            assert!(roots_of(&c, 0.0).is_empty(), "lift {lift}");
+            // Dropped by as much, it crosses twice near 0.3.
+            c.iter_mut().for_each(|x| *x -= 2.0 * lift * scale);
+            let got = intervals(&roots_of(&c, 0.0));
+            assert_eq!(got.len(), 2, "lift {lift}: {got:?}");
+            assert!(
+                got.iter()
+                    .all(|&(lo, hi)| (lo - 0.3).abs() < 1e-2 && (hi - 0.3).abs() < 1e-2)
+            );
         }
     }
 }

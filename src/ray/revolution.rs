@@ -120,6 +120,9 @@ const SPAN_SLACK: f64 = 1e-12;
 pub(crate) struct SpanTable {
     degree: usize,
     spans: Vec<Span>,
+    /// Runs of [`GROUP`] consecutive spans with their joint ranges: a ray
+    /// that misses a group's cylinder skips its spans' tests.
+    groups: Vec<Group>,
     /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
     xs: Vec<f64>,
     ys: Vec<f64>,
@@ -132,6 +135,17 @@ pub(crate) struct SpanTable {
     pub(crate) scale: f64,
     /// The profile's parameter domain (first span's start, last span's end).
     domain: (f64, f64),
+}
+
+/// Spans per culling group.
+const GROUP: usize = 8;
+
+/// Consecutive spans `first..end` and the union of their ranges.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Group {
+    bounds: Span,
+    first: usize,
+    end: usize,
 }
 
 /// One profile span and its conservative ranges.
@@ -251,6 +265,19 @@ impl SpanTable {
         Some(SpanTable {
             domain,
             degree,
+            groups: table
+                .chunks(GROUP)
+                .enumerate()
+                .map(|(g, run)| Group {
+                    bounds: run.iter().skip(1).fold(run[0], |b, s| Span {
+                        u: (b.u.0, s.u.1),
+                        y: (b.y.0.min(s.y.0), b.y.1.max(s.y.1)),
+                        r: (b.r.0.min(s.r.0), b.r.1.max(s.r.1)),
+                    }),
+                    first: g * GROUP,
+                    end: g * GROUP + run.len(),
+                })
+                .collect(),
             spans: table,
             xs,
             ys,
@@ -313,21 +340,26 @@ impl SpanTable {
         let mut order = [(0.0_f64, 0_u32); SORTED_SPANS];
         let mut sorted = 0;
         let mut overflow = false;
-        for (k, span) in self.spans.iter().enumerate() {
-            let Some(entry) = span_entry(span, &q, t_floor, t_best) else {
+        for group in &self.groups {
+            if span_entry(&group.bounds, &q, t_floor, t_best).is_none() {
                 continue;
-            };
-            report.spans_entered += 1;
-            if sorted < SORTED_SPANS {
-                let mut i = sorted;
-                while i > 0 && order[i - 1].0 > entry {
-                    order[i] = order[i - 1];
-                    i -= 1;
+            }
+            for k in group.first..group.end {
+                let Some(entry) = span_entry(&self.spans[k], &q, t_floor, t_best) else {
+                    continue;
+                };
+                report.spans_entered += 1;
+                if sorted < SORTED_SPANS {
+                    let mut i = sorted;
+                    while i > 0 && order[i - 1].0 > entry {
+                        order[i] = order[i - 1];
+                        i -= 1;
+                    }
+                    order[i] = (entry, k as u32);
+                    sorted += 1;
+                } else {
+                    overflow = true;
                 }
-                order[i] = (entry, k as u32);
-                sorted += 1;
-            } else {
-                overflow = true;
             }
         }
         for &(entry, k) in &order[..sorted] {
@@ -508,12 +540,12 @@ impl SpanTable {
         let residual = |s: f64, t: f64| {
             let (x, y, dx, dy) = eval(s);
             let p = q.o + q.d * t;
-            let rho = p.x.hypot(p.z);
+            let rho = (p.x * p.x + p.z * p.z).sqrt();
             ((rho - x.abs(), p.y - y), rho, (x, dx, dy), p)
         };
         let (mut s, mut t) = (s0, t0);
         let (mut f, mut rho, mut profile, mut p) = residual(s, t);
-        let mut r = f.0.hypot(f.1);
+        let mut r = (f.0 * f.0 + f.1 * f.1).sqrt();
         let mut best = (r, s, t);
         for _ in 0..q.max_iterations {
             *iterations += 1;
@@ -537,7 +569,7 @@ impl SpanTable {
             t += step_t;
             s = (s + step_s).clamp(-0.5, 1.5);
             (f, rho, profile, p) = residual(s, t);
-            let r_new = f.0.hypot(f.1);
+            let r_new = (f.0 * f.0 + f.1 * f.1).sqrt();
             if r_new < best.0 {
                 best = (r_new, s, t);
             }
@@ -587,7 +619,7 @@ impl SpanTable {
         // (θ = 0 on the axis), S = (x cos θ, y, −x sin θ): for x < 0 the
         // point is |x| in p's direction, at θ + π.
         let p = q.o + q.d * t;
-        let rho = p.x.hypot(p.z);
+        let rho = (p.x * p.x + p.z * p.z).sqrt();
         let (cs, sn) = if rho > 0.0 {
             let sigma = if x < 0.0 { -1.0 } else { 1.0 };
             (sigma * p.x / rho, -sigma * p.z / rho)
