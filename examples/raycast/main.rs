@@ -1,6 +1,8 @@
 //! The example ray caster: `cargo run --release --example raycast -- SCENE -o OUT.png`.
 //! Being written.
 
+#[allow(dead_code)] // until the renderer uses it
+mod geometry;
 mod parse;
 #[allow(dead_code)] // until the renderer uses every field
 mod scene;
