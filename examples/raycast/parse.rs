@@ -1,18 +1,103 @@
-//! The scene-file parser (../shared/SCENE_FORMAT.md). Being written.
+//! The scene-file parser (the format of `SCENE_FORMAT.md`: the course
+//! framework's scene files plus optional effect keywords).
+//!
+//! # Grammar
+//!
+//! Tokens are separated by white space; `#` starts a comment to the end of
+//! the line; `{ } [ ]` are tokens of their own; numbers are decimal
+//! (`2`, `+3`, `.5`, `-1e-3`). Keys inside a block may come in any order,
+//! each at most once. `P`, `V` and `C` are three numbers (a point, a non-zero
+//! vector, a colour with non-negative components).
+//!
+//! ```text
+//! file        = top-level block…   (each at most once, in any order; the camera is required)
+//! PerspectiveCamera { center P  direction V  up V  angle DEG  width N  height N }
+//! Lights      { [numLights N]  light… }
+//!   light     = DirectionalLight { direction V  color C }
+//!             | PointLight { position P  color C }
+//!             | AreaLight { corner P  edge1 V  edge2 V  color C }
+//! Background  { [color C]  [ambientLight C] }           ambientLight is ignored
+//! Materials   { [numMaterials N]  material… }
+//!   material  = (PhongMaterial | Material) { [diffuseColor C] [specularColor C]
+//!                 [shininess S] [reflectivity C] [transparency C]
+//!                 [refractionIndex N] [absorption C] [emission C] [texture PATH] }
+//! Group       { [numObjects N]  ( MaterialIndex I | object )… }
+//! Transform   { step… object }                          exactly one object
+//!   step      = Translate V | Scale x y z | UniformScale s
+//!             | XRotate deg | YRotate deg | ZRotate deg | Rotate { V deg }
+//! object      = Group | Transform | RevSurface { profile curve } | curve
+//!             | Sphere { center P  radius R }
+//!             | Plane { normal V  offset D }
+//!             | Triangle { vertex0 P  vertex1 P  vertex2 P }
+//!             | TriangleMesh { obj_file PATH }
+//!             | Box { min P  max P }
+//!             | Disk { center P  normal V  radius R }
+//!             | Ring { center P  normal V  inner R  outer R }
+//!             | Rectangle { corner P  edge1 V  edge2 V }
+//! curve       = (BezierCurve | BsplineCurve) { controls [x y z]… }
+//! Render      { [samples N] [maxDepth N] [shadows true|false]
+//!               [integrator whitted|path] [toneMap clamp|reinhard] }
+//! ```
+//!
+//! Paths (`obj_file`, `texture`) are relative to the scene file. The result
+//! is flat: nested groups and transforms become one list of objects, each
+//! with its material index and composed object-to-world matrix (transforms
+//! compose in the order written, `M = T₁·T₂·…`). The submodules hold the
+//! details of each part; every malformed input is a [`ParseError`] pointing
+//! at the offending token, never a panic.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::scene::Scene;
 
+#[path = "parse/camera.rs"]
+mod camera;
+#[path = "parse/counted.rs"]
+mod counted;
+#[path = "parse/cursor.rs"]
+mod cursor;
+#[path = "parse/curves.rs"]
+mod curves;
+#[path = "parse/document.rs"]
+mod document;
+#[path = "parse/lexer.rs"]
+mod lexer;
+#[path = "parse/lights.rs"]
+mod lights;
+#[path = "parse/materials.rs"]
+mod materials;
+#[path = "parse/obj.rs"]
+mod obj;
+#[path = "parse/objects.rs"]
+mod objects;
+#[path = "parse/render.rs"]
+mod render;
+#[path = "parse/resources.rs"]
+mod resources;
+#[path = "parse/shapes.rs"]
+mod shapes;
+#[path = "parse/suggest.rs"]
+mod suggest;
+#[cfg(test)]
+#[path = "parse/tests.rs"]
+mod tests;
+#[path = "parse/texture.rs"]
+mod texture;
+#[path = "parse/transform.rs"]
+mod transform;
+
 /// A malformed scene: where, and what was expected.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {
+    /// The scene file.
     pub file: PathBuf,
     /// 1-based line and column of the offending token (0 when the error is
     /// about the file as a whole, e.g. it cannot be read).
     pub line: usize,
+    /// 1-based column (in characters) of the offending token.
     pub column: usize,
+    /// What is wrong, and what was expected.
     pub message: String,
 }
 
@@ -44,11 +129,6 @@ pub fn parse_file(path: &Path) -> Result<Scene, ParseError> {
 }
 
 /// Parses scene text; `path` names it in errors and anchors relative paths.
-pub fn parse_str(_text: &str, path: &Path) -> Result<Scene, ParseError> {
-    Err(ParseError {
-        file: path.to_path_buf(),
-        line: 0,
-        column: 0,
-        message: "the parser is not written yet".into(),
-    })
+pub fn parse_str(text: &str, path: &Path) -> Result<Scene, ParseError> {
+    document::scene(text, path)
 }

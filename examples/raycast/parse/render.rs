@@ -1,0 +1,41 @@
+//! `Render { samples N  maxDepth N  shadows true|false  integrator whitted|path
+//! toneMap clamp|reinhard }`: every key optional, each at most once.
+
+use super::cursor::{Cursor, Result};
+use crate::scene::{Integrator, RenderSettings, ToneMap};
+
+const BLOCK: &str = "Render";
+const KEYS: &[&str] = &["samples", "maxDepth", "shadows", "integrator", "toneMap"];
+
+/// Reads a `Render` block (after its keyword).
+pub(super) fn render(c: &mut Cursor<'_>) -> Result<RenderSettings> {
+    let open = c.open(BLOCK)?;
+    let mut settings = RenderSettings::default();
+    while let Some(key) = c.key(BLOCK, open)? {
+        match key.text {
+            "samples" => c.field(&mut settings.samples, key, BLOCK, |c, w| {
+                Ok(c.whole(w, 1)?.0)
+            })?,
+            "maxDepth" => c.field(&mut settings.max_depth, key, BLOCK, |c, w| {
+                Ok(c.whole(w, 0)?.0)
+            })?,
+            "shadows" => c.field(&mut settings.shadows, key, BLOCK, |c, w| {
+                c.choice(w, &[("true", true), ("false", false)])
+            })?,
+            "integrator" => c.field(&mut settings.integrator, key, BLOCK, |c, w| {
+                c.choice(
+                    w,
+                    &[("whitted", Integrator::Whitted), ("path", Integrator::Path)],
+                )
+            })?,
+            "toneMap" => c.field(&mut settings.tone_map, key, BLOCK, |c, w| {
+                c.choice(
+                    w,
+                    &[("clamp", ToneMap::Clamp), ("reinhard", ToneMap::Reinhard)],
+                )
+            })?,
+            _ => return Err(c.unknown(key, BLOCK, KEYS)),
+        }
+    }
+    Ok(settings)
+}
