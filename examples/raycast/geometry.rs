@@ -1,11 +1,55 @@
 //! Ray–object intersection for the whole scene: every shape of
 //! [`crate::scene::Shape`] in its own frame, placed by its transform, behind
-//! a bounding volume hierarchy. Being written.
+//! a bounding volume hierarchy.
+//!
+//! - [`shapes`]: sphere, plane, triangle, box, disk/ring, rectangle;
+//!   [`mesh`], [`tube`], [`revolution`]: the composite shapes.
+//! - [`transform`]: rays into an object's frame by `M⁻¹` (direction not
+//!   normalized, so `t` is the world `t`), normals out by `L⁻ᵀ`.
+//! - [`object`]: a shape and its placement; [`bvh`]: the hierarchy used for
+//!   the world and inside meshes and tubes; [`emitter`]: area-light sampling.
+//!
+//! Bounded objects sit in a BVH over their world boxes (the box of the local
+//! box's eight corners under the transform); unbounded ones (planes) in a
+//! list tested for every ray. Objects that can never be hit (degenerate
+//! shapes, singular transforms) are left out at build time. Queries do not
+//! allocate.
+
+#[path = "geometry/bvh.rs"]
+mod bvh;
+#[path = "geometry/emitter.rs"]
+mod emitter;
+#[path = "geometry/mesh.rs"]
+mod mesh;
+#[path = "geometry/object.rs"]
+mod object;
+#[path = "geometry/revolution.rs"]
+mod revolution;
+#[path = "geometry/shapes.rs"]
+mod shapes;
+#[cfg(test)]
+#[path = "geometry/tests.rs"]
+mod tests;
+#[path = "geometry/transform.rs"]
+mod transform;
+#[path = "geometry/tube.rs"]
+mod tube;
+
+use std::ops::ControlFlow;
 
 use revolve::Ray;
 use revolve::nalgebra::{Point3, Unit, Vector3};
 
 use crate::scene::Scene;
+use bvh::{BoxRay, Bvh};
+use object::{Placed, Shared};
+use shapes::LocalHit;
+
+pub use emitter::Emitter;
+
+/// Objects per BVH leaf: one, since an object test (a transform, maybe a
+/// revolution solve) costs more than a box test.
+const WORLD_LEAF: usize = 1;
 
 /// The nearest hit of a ray with the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,66 +79,135 @@ pub struct IntersectStats {
     pub revolution_nanos: u64,
 }
 
+impl std::ops::AddAssign for IntersectStats {
+    /// Sums the counters (to merge per-thread statistics).
+    fn add_assign(&mut self, other: IntersectStats) {
+        self.revolution_calls += other.revolution_calls;
+        self.revolution_nanos += other.revolution_nanos;
+    }
+}
+
 /// The scene's objects ready for ray queries (world bounds, BVH).
 pub struct World {
-    _private: (),
+    /// Bounded objects in BVH leaf order.
+    bounded: Vec<Placed>,
+    bvh: Bvh,
+    /// Planes and anything else without a finite box.
+    unbounded: Vec<Placed>,
+    emitters: Vec<Emitter>,
 }
 
 impl World {
     /// Builds the acceleration structures for `scene`'s objects.
-    pub fn new(_scene: &Scene) -> World {
-        todo!("geometry helper")
+    ///
+    /// Meshes, revolution bodies and tubes shared between objects (the same
+    /// `Arc`) are prepared once. An object with emission in its material
+    /// (any component `> 0`) becomes an [`Emitter`] if its shape can be
+    /// sampled.
+    pub fn new(scene: &Scene) -> World {
+        let mut shared = Shared::default();
+        let (mut bounded, mut boxes, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
+        let mut emitters = Vec::new();
+        for (index, object) in scene.objects.iter().enumerate() {
+            let Some(placed) = Placed::new(index, object, &mut shared) else {
+                continue;
+            };
+            let emissive = scene
+                .materials
+                .get(object.material)
+                .is_some_and(|m| m.emission.iter().any(|&c| c > 0.0));
+            if emissive {
+                emitters.extend(Emitter::new(index, &object.shape, placed.frame.as_ref()));
+            }
+            match placed.world_bounds() {
+                Some(b) if b.is_empty() => {}
+                Some(b) => {
+                    boxes.push(bvh::pad(&b));
+                    bounded.push(Some(placed));
+                }
+                None => unbounded.push(placed),
+            }
+        }
+        let (bvh, order) = Bvh::build(&boxes, WORLD_LEAF);
+        let bounded = order
+            .into_iter()
+            .filter_map(|i| bounded[i].take())
+            .collect();
+        World {
+            bounded,
+            bvh,
+            unbounded,
+            emitters,
+        }
     }
 
     /// The nearest hit with `t_min < t < t_max`.
     pub fn intersect(
         &self,
-        _ray: &Ray,
-        _t_min: f64,
-        _t_max: f64,
-        _stats: &mut IntersectStats,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut IntersectStats,
     ) -> Option<SurfaceHit> {
-        todo!("geometry helper")
+        let mut best: Option<(&Placed, LocalHit)> = None;
+        let mut t_max = t_max;
+        for p in &self.unbounded {
+            if let Some(h) = p.intersect(ray, t_min, t_max, stats) {
+                t_max = h.t;
+                best = Some((p, h));
+            }
+        }
+        self.bvh
+            .traverse(&BoxRay::new(ray), t_min, t_max, |k, t_max| {
+                let p = &self.bounded[k];
+                match p.intersect(ray, t_min, t_max, stats) {
+                    Some(h) => {
+                        best = Some((p, h));
+                        ControlFlow::Continue(h.t)
+                    }
+                    None => ControlFlow::Continue(t_max),
+                }
+            });
+        let (placed, local) = best?;
+        let h = placed.to_world(local);
+        // A zero normal cannot come from a valid shape; face the ray then.
+        let normal = Unit::try_new(h.normal, 0.0)
+            .filter(|n| n.iter().all(|c| c.is_finite()))
+            .or_else(|| Unit::try_new(-ray.dir, 0.0))?;
+        Some(SurfaceHit {
+            t: h.t,
+            point: h.point,
+            normal,
+            uv: h.uv,
+            object: placed.object,
+        })
     }
 
     /// Whether anything lies on the ray with `t_min < t < t_max` (shadow
     /// rays; may stop at the first hit found).
-    pub fn occluded(
-        &self,
-        _ray: &Ray,
-        _t_min: f64,
-        _t_max: f64,
-        _stats: &mut IntersectStats,
-    ) -> bool {
-        todo!("geometry helper")
-    }
-}
-
-/// An object whose material emits light, sampled uniformly by area for
-/// next-event estimation (rectangles, disks, spheres, triangles, meshes and
-/// boxes; other emissive shapes only light what their rays happen to hit).
-pub struct Emitter {
-    /// Index into `Scene::objects`.
-    pub object: usize,
-    _private: (),
-}
-
-impl Emitter {
-    /// World-space area.
-    pub fn area(&self) -> f64 {
-        todo!("geometry helper")
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut IntersectStats) -> bool {
+        if self
+            .unbounded
+            .iter()
+            .any(|p| p.occluded(ray, t_min, t_max, stats))
+        {
+            return true;
+        }
+        let mut hit = false;
+        self.bvh
+            .traverse(&BoxRay::new(ray), t_min, t_max, |k, t_max| {
+                if self.bounded[k].occluded(ray, t_min, t_max, stats) {
+                    hit = true;
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(t_max)
+                }
+            });
+        hit
     }
 
-    /// The point for `(a, b) ∈ [0, 1)²` (uniform by area) and its unit
-    /// normal there (oriented as `SurfaceHit::normal`).
-    pub fn sample(&self, _a: f64, _b: f64) -> (Point3<f64>, Unit<Vector3<f64>>) {
-        todo!("geometry helper")
-    }
-}
-
-impl World {
     /// The emissive objects that can be sampled.
     pub fn emitters(&self) -> &[Emitter] {
-        todo!("geometry helper")
+        &self.emitters
     }
 }
