@@ -1,21 +1,42 @@
 //! The example ray caster: `cargo run --release --example raycast -- SCENE -o OUT.png`.
-//! Being written.
+//!
+//! Reads a scene in the course framework's format (SCENE_FORMAT.md), decides
+//! which effects it calls for ([`effects`]), renders it in parallel with the
+//! Whitted ray tracer ([`whitted`]) or the path tracer ([`path`]), writes a
+//! PNG and reports the effects turned on, the rays traced by kind and the
+//! time spent in revolve's exact intersector. See [`cli`] for the options.
 
-#[allow(dead_code)] // until the renderer uses it
+mod camera;
+mod cli;
+mod effects;
 mod geometry;
+mod image_out;
+mod lights;
+mod optics;
 mod parse;
-#[allow(dead_code)] // until the renderer uses every field
+mod path;
+mod render;
+mod report;
+mod sampling;
+mod scale;
 mod scene;
+mod shading;
+mod stats;
+mod texture;
+mod tracer;
+mod whitted;
 
-fn main() {
-    let path = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "scenes/showcase.txt".into());
-    match parse::parse_file(std::path::Path::new(&path)) {
-        Ok(scene) => println!("{} objects", scene.objects.len()),
+#[cfg(test)]
+mod render_tests;
+
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    match cli::run(std::env::args().skip(1)) {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
+            eprintln!("raycast: {e}");
+            ExitCode::from(1)
         }
     }
 }

@@ -1,0 +1,200 @@
+//! The command line.
+//!
+//! ```text
+//! raycast [SCENE] [-o OUT.png] [--samples N] [--seed S] [--quiet]
+//! ```
+//!
+//! Without `SCENE` it renders the bundled showcase (`scenes/showcase.txt`
+//! of the crate) to `out/showcase.png` of the crate. Given a scene and no
+//! `-o`, it writes `out/<scene name>.png` under the current folder. The
+//! output's folder is created. Any error (bad arguments, a scene that does
+//! not parse, an output that cannot be written) prints one line to stderr
+//! and exits with status 1.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use crate::effects::Effects;
+use crate::image_out;
+use crate::parse;
+use crate::render::{self, Options};
+use crate::report;
+
+/// The help text.
+pub const USAGE: &str = "\
+usage: raycast [SCENE] [-o OUT.png] [--samples N] [--seed S] [--quiet]
+
+Renders SCENE (default: the bundled scenes/showcase.txt) to a PNG.
+  -o, --output OUT.png  where to write (default: out/<scene name>.png)
+  --samples N           samples per pixel, overriding the scene's Render block
+  --seed S              seed of the per-pixel random numbers (default 24301)
+  -q, --quiet           no progress bar and no report
+  -h, --help            this text";
+
+/// Parsed arguments.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Args {
+    pub scene: PathBuf,
+    pub out: PathBuf,
+    pub samples: Option<u32>,
+    pub seed: Option<u64>,
+    pub quiet: bool,
+    pub help: bool,
+}
+
+/// Parses the arguments after the program name.
+pub fn parse_args<I: IntoIterator<Item = String>>(args: I) -> Result<Args, String> {
+    let mut scene = None;
+    let mut out = None;
+    let mut samples = None;
+    let mut seed = None;
+    let mut quiet = false;
+    let mut help = false;
+    let mut args = args.into_iter();
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "-o" | "--output" | "--out" => {
+                out = Some(PathBuf::from(
+                    args.next()
+                        .ok_or_else(|| format!("{a} needs a file name"))?,
+                ));
+            }
+            "--samples" | "-s" => {
+                let v = args.next().ok_or("--samples needs a number")?;
+                let n: u32 = v
+                    .parse()
+                    .map_err(|_| format!("--samples needs a positive integer, not {v:?}"))?;
+                if n == 0 {
+                    return Err("--samples needs a positive integer, not 0".into());
+                }
+                samples = Some(n);
+            }
+            "--seed" => {
+                let v = args.next().ok_or("--seed needs a number")?;
+                seed = Some(
+                    v.parse()
+                        .map_err(|_| format!("--seed needs a non-negative integer, not {v:?}"))?,
+                );
+            }
+            "-q" | "--quiet" => quiet = true,
+            "-h" | "--help" => help = true,
+            s if s.starts_with('-') && s.len() > 1 => {
+                return Err(format!("unknown option {s} (try --help)"));
+            }
+            _ => {
+                if scene.is_some() {
+                    return Err(format!("more than one scene given ({a}); try --help"));
+                }
+                scene = Some(PathBuf::from(a));
+            }
+        }
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (scene, default_out) = match scene {
+        Some(s) => {
+            let stem = s
+                .file_stem()
+                .map_or_else(|| "render".into(), |n| n.to_string_lossy().into_owned());
+            let out = PathBuf::from("out").join(format!("{stem}.png"));
+            (s, out)
+        }
+        None => (
+            root.join("scenes").join("showcase.txt"),
+            root.join("out").join("showcase.png"),
+        ),
+    };
+    Ok(Args {
+        scene,
+        out: out.unwrap_or(default_out),
+        samples,
+        seed,
+        quiet,
+        help,
+    })
+}
+
+/// Runs the command line; the error is the one line to print.
+pub fn run<I: IntoIterator<Item = String>>(args: I) -> Result<(), String> {
+    let args = parse_args(args)?;
+    if args.help {
+        println!("{USAGE}");
+        return Ok(());
+    }
+    let scene = parse::parse_file(&args.scene).map_err(|e| e.to_string())?;
+    if scene.camera.width == 0 || scene.camera.height == 0 {
+        return Err(format!(
+            "{}: the image is empty ({}×{} pixels)",
+            args.scene.display(),
+            scene.camera.width,
+            scene.camera.height
+        ));
+    }
+    image_out::check_writable(&args.out)?;
+
+    let effects = Effects::of(&scene, args.samples);
+    let mut options = Options {
+        samples: args.samples,
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+        ..Options::default()
+    };
+    if let Some(seed) = args.seed {
+        options.seed = seed;
+    }
+    let (image, stats) = render::render(&scene, &options);
+    image_out::write_png(&image, effects.tone_map, &args.out)?;
+    if !args.quiet {
+        print!(
+            "{}",
+            report::summary(&args.scene, &args.out, &scene, &effects, &stats)
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(list: &[&str]) -> Result<Args, String> {
+        parse_args(list.iter().map(|s| s.to_string()))
+    }
+
+    #[test]
+    fn no_arguments_render_the_showcase_into_the_crate() {
+        let a = args(&[]).unwrap();
+        assert!(a.scene.ends_with("scenes/showcase.txt"));
+        assert!(a.out.ends_with("out/showcase.png"));
+        assert!(a.scene.is_absolute());
+        assert_eq!(a.samples, None);
+        assert!(!a.quiet);
+    }
+
+    #[test]
+    fn options_are_read() {
+        let a = args(&["s/x.txt", "--samples", "8", "-o", "y.png", "--quiet"]).unwrap();
+        assert_eq!(a.scene, PathBuf::from("s/x.txt"));
+        assert_eq!(a.out, PathBuf::from("y.png"));
+        assert_eq!(a.samples, Some(8));
+        assert!(a.quiet);
+        assert_eq!(args(&["s/x.txt"]).unwrap().out, PathBuf::from("out/x.png"));
+    }
+
+    #[test]
+    fn bad_arguments_are_errors() {
+        assert!(args(&["--samples"]).is_err());
+        assert!(args(&["--samples", "0"]).is_err());
+        assert!(args(&["--samples", "many"]).is_err());
+        assert!(args(&["-o"]).is_err());
+        assert!(args(&["--frobnicate"]).is_err());
+        assert!(args(&["a.txt", "b.txt"]).is_err());
+    }
+
+    #[test]
+    fn a_missing_scene_is_one_error_line() {
+        let err = run(["/no/such/scene.txt".to_string(), "--quiet".into()]).unwrap_err();
+        assert!(
+            err.contains("/no/such/scene.txt") && !err.contains('\n'),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,182 @@
+//! The recursive ray tracer of the course framework (Whitted), with the
+//! optional effects the scene calls for.
+//!
+//! At the nearest hit `p` of a ray with unit direction `d`, with `N` the
+//! geometric normal flipped to face the viewer and `V = −d`:
+//!
+//! ```text
+//! colour = emission                                   (emissive objects only)
+//!        + Σ delta lights  Phong(L)                   × visible   (hard shadows only)
+//!        + Σ area lights   1/k Σᵢ Phong(Lᵢ)           × visibleᵢ  (k stratified samples)
+//!        + (reflectivity + transparency·F) ⊙ trace(reflected)        (depth < maxDepth)
+//!        + transparency·(1 − F) ⊙ trace(refracted)                    (depth < maxDepth)
+//! ```
+//!
+//! An area light (or a sampled emitter) is treated as `k` point lights of
+//! its full colour at stratified points of its surface, averaged: it is as
+//! bright as a point light, with a penumbra.
+//!
+//! `F` is the exact Fresnel reflectance of the interface ([`optics`]); the
+//! ray enters the object when `d·n < 0` for the outward normal `n`
+//! (indices 1 → `refractionIndex`) and leaves it otherwise (the reverse).
+//! Under total internal reflection `F = 1`. A ray that reaches a surface
+//! from inside an object with `absorption σ` has its colour multiplied by
+//! `exp(−σ t)`, `t` being the distance travelled inside (Beer–Lambert).
+//!
+//! The recursion stops at `maxDepth` bounces, and a branch whose weight
+//! (the product of the reflection/transmission factors along it, largest
+//! channel) falls below [`MIN_WEIGHT`] is not traced. A miss returns the
+//! background colour. Each disabled effect costs one boolean test.
+
+use revolve::Ray;
+use revolve::nalgebra::Vector3;
+
+use crate::optics;
+use crate::sampling::{self, Rng};
+use crate::scene::{Color, Material};
+use crate::shading;
+use crate::stats::Stats;
+use crate::tracer::Tracer;
+
+/// Branches contributing less than this (relative to the camera ray) are not
+/// traced.
+pub const MIN_WEIGHT: f64 = 1e-3;
+
+fn nonzero(c: &Color) -> bool {
+    c.iter().any(|v| *v != 0.0)
+}
+
+/// The colour seen along `ray` (unit direction), ignoring hits with
+/// `t ≤ t_min`; `depth` is the number of bounces so far and `weight` the
+/// branch's weight.
+pub fn trace(
+    tracer: &Tracer<'_>,
+    ray: &Ray,
+    t_min: f64,
+    depth: u32,
+    weight: f64,
+    rng: &mut Rng,
+    stats: &mut Stats,
+) -> Color {
+    let Some(hit) = tracer.nearest(ray, t_min, stats) else {
+        return tracer.scene.background;
+    };
+    let effects = &tracer.effects;
+    let material = tracer.material(hit.object);
+    let d = ray.dir;
+    let outward = hit.normal.into_inner();
+    let front = d.dot(&outward) <= 0.0;
+    let n = if front { outward } else { -outward };
+    let v = -d;
+    let p = hit.point;
+    let kd = shading::diffuse_at(material, hit.uv, effects.textures);
+
+    let mut color = Color::zeros();
+    if effects.emissive {
+        color += material.emission;
+    }
+    for light in &tracer.lights.delta {
+        let Some((l, dist)) = light.toward(&p) else {
+            continue;
+        };
+        if effects.hard_shadows && !tracer.visible(&p, &n, &l, dist, stats) {
+            continue;
+        }
+        color += shading::phong(&kd, material, &n, &v, &l, light.color());
+    }
+    if effects.area_lights || effects.emissive {
+        color += area_lights(tracer, &p, &n, &v, &kd, material, rng, stats);
+    }
+
+    if depth < effects.max_depth {
+        let mut mirror = Color::zeros();
+        if effects.reflection {
+            mirror += material.reflectivity;
+        }
+        if effects.refraction && nonzero(&material.transparency) {
+            let ior = if material.refraction_index > 0.0 {
+                material.refraction_index
+            } else {
+                1.0
+            };
+            let (n1, n2) = if front { (1.0, ior) } else { (ior, 1.0) };
+            let f = optics::fresnel(v.dot(&n), n1, n2);
+            match optics::refract(&d, &n, n1 / n2) {
+                Some(t) if f < 1.0 => {
+                    let k = material.transparency * (1.0 - f);
+                    let w = weight * k.max();
+                    if w >= MIN_WEIGHT {
+                        stats.rays.refraction += 1;
+                        let ray = tracer.spawn(&p, &-n, t.normalize());
+                        let c = trace(tracer, &ray, tracer.eps, depth + 1, w, rng, stats);
+                        color += k.component_mul(&c);
+                    }
+                    mirror += material.transparency * f;
+                }
+                _ => mirror += material.transparency,
+            }
+        }
+        let w = weight * mirror.max();
+        if nonzero(&mirror) && w >= MIN_WEIGHT {
+            stats.rays.reflection += 1;
+            let ray = tracer.spawn(&p, &n, optics::reflect(&d, &n));
+            let c = trace(tracer, &ray, tracer.eps, depth + 1, w, rng, stats);
+            color += mirror.component_mul(&c);
+        }
+    }
+
+    if effects.absorption && !front && nonzero(&material.absorption) {
+        color = color.component_mul(&optics::beer_lambert(&material.absorption, hit.t));
+    }
+    color
+}
+
+/// The Phong light of the area lights and sampled emitters at `p`, each
+/// averaged over `k = light_samples` stratified points of its surface.
+#[allow(clippy::too_many_arguments)]
+fn area_lights(
+    tracer: &Tracer<'_>,
+    p: &revolve::nalgebra::Point3<f64>,
+    n: &Vector3<f64>,
+    v: &Vector3<f64>,
+    kd: &Color,
+    material: &Material,
+    rng: &mut Rng,
+    stats: &mut Stats,
+) -> Color {
+    let effects = &tracer.effects;
+    let k = effects.light_samples;
+    let scale = 1.0 / f64::from(k);
+    let mut color = Color::zeros();
+    let mut add = |q: revolve::nalgebra::Point3<f64>, light: &Color, stats: &mut Stats| {
+        let w = q - p;
+        let dist = w.norm();
+        if dist <= 0.0 {
+            return;
+        }
+        let l = w / dist;
+        if effects.soft_shadows && !tracer.visible(p, n, &l, dist, stats) {
+            return;
+        }
+        color += shading::phong(kd, material, n, v, &l, light) * scale;
+    };
+    for light in &tracer.lights.area {
+        for i in 0..k {
+            let (a, b) = sampling::stratum(i, k, rng.next_2d());
+            add(light.point(a, b), &light.color, stats);
+        }
+    }
+    if effects.emissive {
+        for e in tracer.world.emitters() {
+            let emission = tracer.material(e.object).emission;
+            if !nonzero(&emission) {
+                continue;
+            }
+            for i in 0..k {
+                let (a, b) = sampling::stratum(i, k, rng.next_2d());
+                add(e.sample(a, b).0, &emission, stats);
+            }
+        }
+    }
+    color
+}
