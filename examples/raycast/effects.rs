@@ -60,6 +60,10 @@ pub struct Effects {
     pub tone_map: ToneMap,
 }
 
+fn per_point(n: u32) -> String {
+    format!("{n} sample{} per point", if n == 1 { "" } else { "s" })
+}
+
 fn nonzero(c: &Color) -> bool {
     c.iter().any(|v| *v != 0.0)
 }
@@ -155,13 +159,13 @@ impl Effects {
             };
             if self.soft_shadows || visibility_always {
                 names.push(format!(
-                    "soft shadows ({what}, {} samples per point)",
-                    self.light_samples
+                    "soft shadows ({what}, {})",
+                    per_point(self.light_samples)
                 ));
             } else {
                 names.push(format!(
-                    "{what} sampled without shadows ({} samples per point)",
-                    self.light_samples
+                    "{what} sampled without shadows ({})",
+                    per_point(self.light_samples)
                 ));
             }
         }

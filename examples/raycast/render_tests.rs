@@ -665,3 +665,72 @@ fn a_parsed_render_block_turns_effects_on() {
     assert_eq!(stats.rays.primary, 4 * 33 * 33);
     assert!(stats.rays.shadow > 0 && stats.rays.reflection > 0);
 }
+
+#[test]
+fn inside_a_glowing_diffuse_sphere_the_bounces_sum_to_a_geometric_series() {
+    // Every surface emits Le = 1 and reflects ρ = ½, so the radiance is
+    // Σₖ ρᵏ over the path lengths traced: next-event estimation adds one
+    // term per bounce (between two points of a sphere cos·cos'/r² is the
+    // constant 1/(4R²), so each estimate is exactly ρ·L), emission met by
+    // diffuse rays must not add it again, and Russian roulette must not
+    // bias the sum.
+    let depth = 20;
+    let mut s = scene(
+        look_at([0.0; 3], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], 1, 10.0),
+        vec![],
+        vec![Material {
+            diffuse: Color::repeat(0.5),
+            emission: Color::repeat(1.0),
+            ..Material::default()
+        }],
+        vec![sphere([0.0; 3], 1.0, 0)],
+    );
+    s.render.samples = Some(4096);
+    s.render.max_depth = Some(depth);
+    let (image, stats) = run(&s);
+    let expected: f64 = (0..=depth + 1).map(|k| 0.5f64.powi(k as i32)).sum();
+    let got = image.get(0, 0).x;
+    assert!((got / expected - 1.0).abs() < 0.02, "{got} vs {expected}");
+    assert!(stats.rays.indirect > 4096);
+}
+
+#[test]
+fn shadows_false_keeps_area_lights_without_shadow_rays() {
+    let mut s = ball_over_floor();
+    s.lights = vec![Light::Area {
+        corner: Point3::new(-0.5, 3.0, -0.5),
+        edge1: Vector3::new(1.0, 0.0, 0.0),
+        edge2: Vector3::new(0.0, 0.0, 1.0),
+        color: Color::repeat(1.0),
+    }];
+    s.render.shadows = Some(false);
+    let (image, stats) = run(&s);
+    assert_eq!(stats.rays.shadow, 0);
+    let (x, y) = pixel_of(&s, [0.0, -1.0, 0.0]);
+    assert!(image.get(x, y).x > 0.4, "{:?}", image.get(x, y));
+}
+
+#[test]
+fn the_command_line_writes_the_png_and_fails_cleanly() {
+    let dir = std::env::temp_dir().join(format!("raycast-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene_path = dir.join("s.txt");
+    std::fs::write(&scene_path, PARSED_SCENE).unwrap();
+    let out = dir.join("sub").join("s.png");
+    let args = [
+        scene_path.display().to_string(),
+        "-o".into(),
+        out.display().to_string(),
+        "--quiet".into(),
+    ];
+    crate::cli::run(args).unwrap();
+    let png = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(png.dimensions(), (33, 33));
+    // Background 0.1 0.2 0.3 written linearly: int(c·255).
+    assert_eq!(png.get_pixel(0, 0).0, [25, 51, 76]);
+
+    std::fs::write(&scene_path, "PerspectiveCamera { center 0 0 x }").unwrap();
+    let err = crate::cli::run([scene_path.display().to_string(), "--quiet".into()]).unwrap_err();
+    assert!(err.contains("s.txt:1:"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -48,11 +48,15 @@ pub fn summary(
         if effects.samples == 1 { "" } else { "s" },
         out.display()
     );
-    let _ = writeln!(
-        s,
-        "integrator  {integrator}, max depth {}",
-        effects.max_depth
-    );
+    if effects.integrator == Integrator::Path || effects.reflection || effects.refraction {
+        let _ = writeln!(
+            s,
+            "integrator  {integrator}, max depth {}",
+            effects.max_depth
+        );
+    } else {
+        let _ = writeln!(s, "integrator  {integrator}");
+    }
     let names = effects.names();
     if names.is_empty() {
         let _ = writeln!(
