@@ -29,6 +29,9 @@ mod whitted;
 #[cfg(test)]
 mod render_tests;
 
+#[cfg(test)]
+mod golden_tests;
+
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
