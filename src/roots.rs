@@ -15,9 +15,16 @@
 //!   within the error of zero) a root "within the noise" at that end, which is
 //!   reported so that a grazing contact is never lost.
 //!
-//! Everything else is split at its midpoint. A monotonic piece with a sign
-//! change is refined by safeguarded Newton iteration (bisection whenever a
-//! Newton step leaves the bracket) to full double precision. Pieces narrower
+//! - if the coefficients certainly change sign exactly once (Descartes' rule
+//!   in Bernstein form), there is exactly one root;
+//! - a deep piece that is certainly convex or concave has at most two roots,
+//!   one either side of its extremum, and none if the extremum's lower bound
+//!   is certainly positive (near-tangencies decided at once).
+//!
+//! Everything else is split at its midpoint. A piece with one root is refined
+//! by safeguarded Newton iteration on a certain-sign bracket (bisection
+//! whenever a step leaves it or stalls) and confirmed by the signs either
+//! side. Pieces narrower
 //! than `2⁻ᴹᴬˣ` that still cannot be decided are reported as roots at their
 //! midpoint; where every coefficient is within the error of zero the
 //! polynomial vanishes identically on the piece and the whole piece is

@@ -41,6 +41,14 @@ pub fn refract(d: &Vector3<f64>, n: &Vector3<f64>, eta: f64) -> Option<Vector3<f
     Some(d * eta + n * (eta * cos_i - cos_t))
 }
 
+/// The refractive indices `(n₁, n₂)` on the incoming and the far side of a
+/// surface of index `ior` (a non-positive `ior` counts as 1, vacuum) with
+/// air outside: `(1, ior)` entering through the front, `(ior, 1)` leaving.
+pub fn indices(ior: f64, front: bool) -> (f64, f64) {
+    let ior = if ior > 0.0 { ior } else { 1.0 };
+    if front { (1.0, ior) } else { (ior, 1.0) }
+}
+
 /// The exact unpolarized Fresnel reflectance for light arriving at the
 /// angle with cosine `cos_i` (≥ 0) from the medium of index `n1` onto the
 /// medium of index `n2`.

@@ -137,12 +137,7 @@ pub fn radiance(tracer: &Tracer<'_>, camera_ray: &Ray, rng: &mut Rng, stats: &mu
         } else {
             count_emission = true;
             throughput = throughput.component_mul(&material.transparency) * (total / wt);
-            let ior = if material.refraction_index > 0.0 {
-                material.refraction_index
-            } else {
-                1.0
-            };
-            let (n1, n2) = if front { (1.0, ior) } else { (ior, 1.0) };
+            let (n1, n2) = optics::indices(material.refraction_index, front);
             let f = optics::fresnel(v.dot(&n), n1, n2);
             match optics::refract(&d, &n, n1 / n2) {
                 Some(t) if rng.next_f64() >= f => {

@@ -94,12 +94,7 @@ pub fn trace(
             mirror += material.reflectivity;
         }
         if effects.refraction && nonzero(&material.transparency) {
-            let ior = if material.refraction_index > 0.0 {
-                material.refraction_index
-            } else {
-                1.0
-            };
-            let (n1, n2) = if front { (1.0, ior) } else { (ior, 1.0) };
+            let (n1, n2) = optics::indices(material.refraction_index, front);
             let f = optics::fresnel(v.dot(&n), n1, n2);
             match optics::refract(&d, &n, n1 / n2) {
                 Some(t) if f < 1.0 => {

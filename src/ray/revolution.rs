@@ -14,8 +14,9 @@
 //! The same sums over magnitudes give a rounding bound for every
 //! coefficient, so [`find_roots`] can isolate all roots without missing one.
 //! Each root `u` gives `t` (from the height, or from the radius for shallow
-//! rays) and `θ` (from the hit point), and Newton's method on the unsquared
-//! system `o + t d − S(u, θ) = 0` with its analytic Jacobian polishes the hit.
+//! rays), and Newton's method on the unsquared system polishes the hit: in
+//! the meridian plane, with the angle eliminated exactly (`θ` is the ray
+//! point's own angle), `ρ(t) = |x(u)|`, `p_y(t) = y(u)`.
 //! Rays perpendicular to the axis (`d_y = 0`) solve `y(u) = o_y` instead.
 //!
 //! Spans are culled by their height and radius ranges and visited in order of
