@@ -1,0 +1,58 @@
+//! What the study measures: the method interface and the figures of one row.
+
+use revolve::Ray;
+
+/// A way to find the nearest ray–surface hit, as the study drives it.
+///
+/// `nearest` takes `&mut self` so that randomized methods (the course
+/// method's random starts) can keep their generator.
+pub trait Method {
+    /// The series this method belongs to in the plot (e.g. `"exact"`).
+    fn series(&self) -> String;
+    /// Its setting, for the table (e.g. `"tol 1e-6"`).
+    fn knob(&self) -> String;
+    /// The `t` of the nearest hit with `t_min < t < t_max`, or `None`.
+    fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64>;
+}
+
+/// Error figures of one method on one ray set, against the reference.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ErrorStats {
+    /// Rays traced (those with a certain reference answer).
+    pub rays: usize,
+    /// Rays the reference hits.
+    pub reference_hits: usize,
+    /// Median of `|t − t_ref| / scale` over rays both hit.
+    pub median: f64,
+    /// Maximum of `|t − t_ref| / scale` over rays both hit.
+    pub max: f64,
+    /// Fraction of the reference's hits the method missed.
+    pub miss_rate: f64,
+    /// Fraction of the reference's misses the method hit.
+    pub false_hit_rate: f64,
+    /// Fraction of the reference's hits answered with another root
+    /// (`|t − t_ref| > WRONG_ROOT · scale`).
+    pub wrong_root_rate: f64,
+}
+
+/// Relative `t` error above which a hit counts as a different root.
+pub const WRONG_ROOT: f64 = 1e-3;
+
+/// One row of the intersection table and one point of the plot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// `"vase"` or `"wine glass"`.
+    pub shape: &'static str,
+    /// The plot series.
+    pub series: String,
+    /// The setting.
+    pub knob: String,
+    /// Errors against the reference.
+    pub errors: ErrorStats,
+    /// Rays per second on one thread, the median of repeated runs.
+    pub rays_per_second: f64,
+    /// Heap bytes the method's per-surface data holds.
+    pub memory_bytes: usize,
+    /// Seconds to build the per-surface data.
+    pub build_seconds: f64,
+}
