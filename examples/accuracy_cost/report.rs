@@ -1,0 +1,212 @@
+//! Runs the whole study and writes what it found: `report.md` and the plots.
+
+use crate::curves::{self, CurvePoint};
+use crate::model::Row;
+use crate::plot::{self, Panel, Series};
+use crate::study::{self, Cases, Plan, Shape};
+use crate::table;
+use indicatif::ProgressBar;
+use revolve::{Curve, Intersect, Revolution};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Errors below this are drawn at it on the log axis (a `t` equal to the
+/// reference's rounded value has error 0).
+pub const ERROR_FLOOR: f64 = 1e-17;
+
+/// How the rays of one shape went.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeSummary {
+    pub name: &'static str,
+    /// Rays with a certified reference answer, and those hit.
+    pub rays: usize,
+    pub hits: usize,
+    /// Rays left out (tangent contacts the reference could not certify).
+    pub ambiguous: usize,
+    /// Seconds the exact reference took (all cores).
+    pub reference_seconds: f64,
+}
+
+/// Everything one run measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    pub shapes: Vec<ShapeSummary>,
+    pub rows: Vec<Row>,
+    pub curves: Vec<CurvePoint>,
+}
+
+impl Results {
+    /// The intersection table.
+    pub fn intersection_markdown(&self) -> String {
+        table::intersection_table(&self.rows)
+    }
+}
+
+/// Runs the intersection study on both shapes, then the curve study,
+/// advancing `bar`.
+pub fn collect(plan: &Plan, quick: bool, bar: &ProgressBar) -> Results {
+    bar.set_length((2 * plan.rows()) as u64);
+    let mut results = Results {
+        shapes: Vec::new(),
+        rows: Vec::new(),
+        curves: Vec::new(),
+    };
+    shape(&study::vase(), plan, bar, &mut results);
+    shape(&study::wine_glass(), plan, bar, &mut results);
+    let base = bar.position();
+    bar.set_message("curves");
+    results.curves = curves::study(quick, &mut |done, total| {
+        bar.set_length(base + total as u64);
+        bar.set_position(base + done as u64);
+    });
+    results
+}
+
+fn shape<C: Curve<2> + Clone>(
+    shape: &Shape<C>,
+    plan: &Plan,
+    bar: &ProgressBar,
+    results: &mut Results,
+) {
+    bar.set_message(format!("{}: exact reference", shape.name));
+    let bounds = Revolution::new(shape.profile.clone()).bounds();
+    let rays = study::random_rays(&bounds, plan.rays, 0xACC0 + results.shapes.len() as u64);
+    let start = Instant::now();
+    let cases: Cases = study::reference_cases(&shape.exact, &rays, bounds.scale());
+    results.shapes.push(ShapeSummary {
+        name: shape.name,
+        rays: cases.cases.len(),
+        hits: cases.cases.iter().filter(|c| c.t.is_some()).count(),
+        ambiguous: cases.ambiguous,
+        reference_seconds: start.elapsed().as_secs_f64(),
+    });
+    let rows = study::run_shape(shape, &cases, plan, &mut |row| {
+        bar.set_message(format!("{}: {} {}", row.shape, row.series, row.knob));
+        bar.inc(1);
+    });
+    results.rows.extend(rows);
+}
+
+/// The plot series of one shape's rows: one per method series, points
+/// `(rays/s, error)` in the rows' order, errors floored at [`ERROR_FLOOR`].
+pub fn series_of(rows: &[Row], shape: &str, error: impl Fn(&Row) -> f64) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for row in rows.iter().filter(|r| r.shape == shape) {
+        let point = (row.rays_per_second, error(row).max(ERROR_FLOOR));
+        match out.iter_mut().find(|s| s.name == row.series) {
+            Some(s) => s.points.push(point),
+            None => out.push(Series {
+                name: row.series.clone(),
+                points: vec![point],
+                // The course method's settings are not an ordered sweep.
+                connect: !row.series.starts_with("course"),
+            }),
+        }
+    }
+    out
+}
+
+/// Writes `report.md`, `intersection.svg`, `intersection_max.svg` and
+/// `curves.svg` into `dir`; returns their paths.
+pub fn write(dir: &Path, results: &Results, plan: &Plan) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut files = Vec::new();
+    let names: Vec<&str> = results.shapes.iter().map(|s| s.name).collect();
+    for (file, what, error) in [
+        (
+            "intersection.svg",
+            "median",
+            (|r: &Row| r.errors.median) as fn(&Row) -> f64,
+        ),
+        ("intersection_max.svg", "maximum", |r: &Row| r.errors.max),
+    ] {
+        let series: Vec<Vec<Series>> = names
+            .iter()
+            .map(|n| series_of(&results.rows, n, error))
+            .collect();
+        let panels: Vec<Panel<'_>> = names
+            .iter()
+            .zip(&series)
+            .map(|(n, s)| Panel {
+                title: n,
+                series: s,
+            })
+            .collect();
+        let svg = plot::loglog_svg_panels(
+            &format!("What accuracy costs: {what} error of t against rays per second"),
+            "rays per second (one thread)",
+            &format!("{what} |t − t_exact| / object size"),
+            &panels,
+        );
+        let path = dir.join(file);
+        plot::write(&path, &svg)?;
+        files.push(path);
+    }
+    let curve_series = curve_series(&results.curves);
+    let svg = plot::loglog_svg(
+        "Curve discretization: measured deviation against samples",
+        "samples",
+        "max deviation of the curve from the polyline",
+        &curve_series,
+    );
+    let path = dir.join("curves.svg");
+    plot::write(&path, &svg)?;
+    files.push(path);
+    let path = dir.join("report.md");
+    std::fs::write(&path, markdown(results, plan))?;
+    files.push(path);
+    Ok(files)
+}
+
+/// One series per curve and method: `(samples, measured deviation)`.
+fn curve_series(points: &[CurvePoint]) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for p in points {
+        let name = format!("{}, {}", p.curve, p.method);
+        let point = (p.samples as f64, p.measured.max(ERROR_FLOOR));
+        match out.iter_mut().find(|s| s.name == name) {
+            Some(s) => s.points.push(point),
+            None => out.push(Series {
+                name,
+                points: vec![point],
+                connect: true,
+            }),
+        }
+    }
+    out
+}
+
+/// The whole report as markdown.
+pub fn markdown(results: &Results, plan: &Plan) -> String {
+    let mut md = String::from("# What accuracy costs in time\n\n");
+    let _ = writeln!(
+        md,
+        "Written by `cargo run --release --example accuracy_cost`. Random rays through \
+         each shape's bounding box, {} per shape; errors are `|t − t_exact| / object size` \
+         against hits computed in exact rational arithmetic; rays/s is the median of {} \
+         passes on one thread.\n",
+        plan.rays, plan.repeats
+    );
+    for s in &results.shapes {
+        let _ = writeln!(
+            md,
+            "- {}: {} rays certified ({} hit), {} left out as tangent contacts; \
+             reference in {:.1} s.",
+            s.name, s.rays, s.hits, s.ambiguous, s.reference_seconds
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n## Intersection\n\nA wrong root is a hit farther than {:.0e} of the object's \
+         size from the nearest one.\n",
+        crate::model::WRONG_ROOT
+    );
+    md.push_str(&table::intersection_table(&results.rows));
+    md.push_str("\n![median error against rays/s](intersection.svg)\n\n");
+    md.push_str("![maximum error against rays/s](intersection_max.svg)\n\n");
+    md.push_str("## Curves\n\n");
+    md.push_str(&table::curve_table(&results.curves));
+    md.push_str("\n![deviation against samples](curves.svg)\n");
+    md
+}

@@ -1,0 +1,344 @@
+//! The intersection study: shapes, rays, reference answers, and the
+//! measurement of every method and setting against them.
+//!
+//! For each shape, random rays run from a sphere around the bounding box
+//! through a random point of the box (hits and misses mixed, as in
+//! rendering). The exact reference ([`ExactProfile`]) answers each ray in
+//! rational arithmetic; rays it cannot certify (tangent contacts) are left
+//! out and counted. Every method then traces the same rays twice: once for
+//! its answers (errors against the reference), then `repeats` timed passes on
+//! one thread, of which the median rate is reported.
+
+use crate::course::CourseNewton;
+use crate::memory;
+use crate::mesh_baseline::MeshBaseline;
+use crate::model::{ErrorStats, Method, Row, WRONG_ROOT};
+use crate::reference::{ExactProfile, Reference};
+use revolve::{
+    Aabb, BSpline, Bezier, Curve, Intersect, NewtonIntersector, Ray, Revolution, Tolerance,
+};
+use std::hint::black_box;
+use std::time::Instant;
+
+use crate::common::Rng;
+use rayon::prelude::*;
+
+/// Rays start this far along `dir` (unit) from the target point, times the
+/// box diagonal; every method searches `(0, T_MAX)`.
+const START: f64 = 2.0;
+const T_MAX: f64 = 100.0;
+
+/// How big a run is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Rays per shape.
+    pub rays: usize,
+    /// Timed passes per method (the median rate is reported).
+    pub repeats: usize,
+    /// Relative tolerances of the exact intersector.
+    pub exact_tolerances: Vec<f64>,
+    /// Patch-tree depths and tolerances of the generic Newton intersector.
+    pub newton_depths: Vec<u32>,
+    pub newton_tolerances: Vec<f64>,
+    /// `(attempts, iterations)` of the course method.
+    pub course: Vec<(u32, u32)>,
+    /// Tessellation tolerances of the triangle-mesh baseline.
+    pub mesh_tolerances: Vec<f64>,
+}
+
+impl Plan {
+    /// The full study (a few minutes on 2 cores).
+    pub fn full() -> Self {
+        Plan {
+            rays: 2000,
+            repeats: 5,
+            exact_tolerances: vec![1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14],
+            newton_depths: vec![4, 6, 8, 10],
+            newton_tolerances: vec![1e-4, 1e-8, 1e-12],
+            course: vec![(1, 10), (5, 10), (15, 5), (15, 10), (15, 20), (40, 20)],
+            mesh_tolerances: vec![1e-2, 1e-3, 1e-4, 1e-5],
+        }
+    }
+
+    /// Every code path at a tiny size (CI, tests).
+    pub fn quick() -> Self {
+        Plan {
+            rays: 48,
+            repeats: 1,
+            exact_tolerances: vec![1e-2, 1e-14],
+            newton_depths: vec![4],
+            newton_tolerances: vec![1e-8],
+            course: vec![(15, 10)],
+            mesh_tolerances: vec![1e-2],
+        }
+    }
+
+    /// Rows one shape produces (for the progress bar).
+    pub fn rows(&self) -> usize {
+        self.exact_tolerances.len()
+            + self.newton_depths.len() * self.newton_tolerances.len()
+            + self.course.len()
+            + self.mesh_tolerances.len()
+    }
+}
+
+/// A shape of the study: its profile, revolved, and the same profile in
+/// exact form.
+pub struct Shape<C> {
+    pub name: &'static str,
+    pub profile: C,
+    pub exact: ExactProfile,
+}
+
+/// The vase: one cubic Bézier.
+pub fn vase() -> Shape<Bezier<2>> {
+    let profile = crate::common::vase();
+    let exact = ExactProfile::from_bezier(profile.points());
+    Shape {
+        name: "vase",
+        profile,
+        exact,
+    }
+}
+
+/// The wine glass: a 25-point uniform cubic B-spline.
+pub fn wine_glass() -> Shape<BSpline<2>> {
+    let profile = crate::common::wine_glass();
+    let exact = ExactProfile::from_bspline(profile.degree(), profile.knots(), profile.points());
+    Shape {
+        name: "wine glass",
+        profile,
+        exact,
+    }
+}
+
+/// A ray and its certified nearest hit (`None`: a certain miss).
+#[derive(Debug, Clone, Copy)]
+pub struct Case {
+    pub ray: Ray,
+    pub t: Option<f64>,
+}
+
+/// The rays of one shape with their reference answers.
+pub struct Cases {
+    pub cases: Vec<Case>,
+    /// Rays the reference could not certify (left out).
+    pub ambiguous: usize,
+    /// The object's scale: errors are `|t − t_ref| / scale`.
+    pub scale: f64,
+}
+
+/// `count` random rays through `bounds` (unit directions, `d_y ≠ 0`),
+/// deterministic for `seed`.
+pub fn random_rays(bounds: &Aabb, count: usize, seed: u64) -> Vec<Ray> {
+    let mut rng = Rng(seed);
+    let radius = START * bounds.extent().norm();
+    let mut rays = Vec::with_capacity(count);
+    while rays.len() < count {
+        let target = rng.point_in(bounds);
+        let dir = rng.direction();
+        if dir.y == 0.0 {
+            continue; // the reference handles d_y ≠ 0 only
+        }
+        rays.push(Ray::new(target - dir * radius, dir));
+    }
+    rays
+}
+
+/// The reference answers for `rays` (in parallel: the rational arithmetic
+/// is the slow part of a run).
+pub fn reference_cases(exact: &ExactProfile, rays: &[Ray], scale: f64) -> Cases {
+    let answers: Vec<Reference> = rays
+        .par_iter()
+        .map(|r| exact.nearest(r, 0.0, T_MAX))
+        .collect();
+    let mut cases = Vec::with_capacity(rays.len());
+    let mut ambiguous = 0;
+    for (ray, answer) in rays.iter().zip(answers) {
+        match answer {
+            Reference::Hit { t, .. } => cases.push(Case {
+                ray: *ray,
+                t: Some(t),
+            }),
+            Reference::Miss => cases.push(Case { ray: *ray, t: None }),
+            Reference::Ambiguous => ambiguous += 1,
+        }
+    }
+    Cases {
+        cases,
+        ambiguous,
+        scale,
+    }
+}
+
+/// The errors of `answers` (one per case, in order) against the reference.
+pub fn error_stats(cases: &Cases, answers: &[Option<f64>]) -> ErrorStats {
+    let mut errors = Vec::new();
+    let (mut hits, mut misses, mut false_hits, mut wrong, mut ref_misses) = (0, 0, 0, 0, 0);
+    for (case, answer) in cases.cases.iter().zip(answers) {
+        match (case.t, *answer) {
+            (Some(t_ref), Some(t)) => {
+                hits += 1;
+                let e = (t - t_ref).abs() / cases.scale;
+                if e > WRONG_ROOT {
+                    wrong += 1;
+                }
+                errors.push(e);
+            }
+            (Some(_), None) => {
+                hits += 1;
+                misses += 1;
+            }
+            (None, Some(_)) => {
+                ref_misses += 1;
+                false_hits += 1;
+            }
+            (None, None) => ref_misses += 1,
+        }
+    }
+    errors.sort_by(f64::total_cmp);
+    let rate = |k: usize, of: usize| if of == 0 { 0.0 } else { k as f64 / of as f64 };
+    ErrorStats {
+        rays: cases.cases.len(),
+        reference_hits: hits,
+        median: median_sorted(&errors),
+        max: errors.last().copied().unwrap_or(0.0),
+        miss_rate: rate(misses, hits),
+        false_hit_rate: rate(false_hits, ref_misses),
+        wrong_root_rate: rate(wrong, hits),
+    }
+}
+
+/// The median of sorted values (0 for none).
+fn median_sorted(v: &[f64]) -> f64 {
+    match v.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}
+
+/// Traces every case once for the answers, then `repeats` timed passes:
+/// the error figures and the median rays per second.
+pub fn measure(method: &mut dyn Method, cases: &Cases, repeats: usize) -> (ErrorStats, f64) {
+    let answers: Vec<Option<f64>> = cases
+        .cases
+        .iter()
+        .map(|c| method.nearest(&c.ray, 0.0, T_MAX))
+        .collect();
+    let stats = error_stats(cases, &answers);
+    let mut rates: Vec<f64> = (0..repeats.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            for c in &cases.cases {
+                black_box(method.nearest(black_box(&c.ray), 0.0, T_MAX));
+            }
+            cases.cases.len() as f64 / start.elapsed().as_secs_f64().max(1e-12)
+        })
+        .collect();
+    rates.sort_by(f64::total_cmp);
+    (stats, median_sorted(&rates))
+}
+
+/// The exact intersector at one tolerance.
+struct Exact<C> {
+    surface: Revolution<C>,
+    tolerance: f64,
+}
+
+impl<C: Curve<2>> Method for Exact<C> {
+    fn series(&self) -> String {
+        "exact (revolve)".to_string()
+    }
+    fn knob(&self) -> String {
+        format!("tol {:.0e}", self.tolerance)
+    }
+    fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        self.surface.intersect(ray, t_min, t_max).map(|h| h.t)
+    }
+}
+
+/// The generic Newton intersector at one depth and tolerance.
+struct Newton<C> {
+    solver: NewtonIntersector<Revolution<C>>,
+    tolerance: f64,
+}
+
+impl<C: Curve<2>> Method for Newton<C> {
+    fn series(&self) -> String {
+        format!("Newton (revolve), depth {}", self.solver.depth())
+    }
+    fn knob(&self) -> String {
+        format!("depth {}, tol {:.0e}", self.solver.depth(), self.tolerance)
+    }
+    fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        self.solver.intersect(ray, t_min, t_max).map(|h| h.t)
+    }
+}
+
+/// Builds a method, timing it and counting the heap it holds.
+fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
+    let start = Instant::now();
+    let (m, bytes) = memory::held_by(build);
+    (m, start.elapsed().as_secs_f64(), bytes)
+}
+
+/// Every method and setting of `plan` on one shape; `tick` after each row.
+pub fn run_shape<C: Curve<2> + Clone>(
+    shape: &Shape<C>,
+    cases: &Cases,
+    plan: &Plan,
+    tick: &mut dyn FnMut(&Row),
+) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let mut record = |method: &mut dyn Method, seconds: f64, bytes: usize| {
+        let (errors, rate) = measure(method, cases, plan.repeats);
+        let row = Row {
+            shape: shape.name,
+            series: method.series(),
+            knob: method.knob(),
+            errors,
+            rays_per_second: rate,
+            memory_bytes: bytes,
+            build_seconds: seconds,
+        };
+        tick(&row);
+        rows.push(row);
+    };
+    for &tolerance in &plan.exact_tolerances {
+        let (mut m, s, b) = built(|| Exact {
+            surface: Revolution::new(shape.profile.clone())
+                .with_tolerance(Tolerance::relative(tolerance)),
+            tolerance,
+        });
+        record(&mut m, s, b);
+    }
+    for &depth in &plan.newton_depths {
+        for &tolerance in &plan.newton_tolerances {
+            let (mut m, s, b) = built(|| Newton {
+                solver: NewtonIntersector::new(Revolution::new(shape.profile.clone()), depth)
+                    .with_tolerance(Tolerance::relative(tolerance)),
+                tolerance,
+            });
+            record(&mut m, s, b);
+        }
+    }
+    for &(attempts, iterations) in &plan.course {
+        let (mut m, s, b) = built(|| {
+            CourseNewton::new(
+                Revolution::new(shape.profile.clone()),
+                attempts,
+                iterations,
+                0x5EED,
+            )
+        });
+        record(&mut m, s, b);
+    }
+    for &tolerance in &plan.mesh_tolerances {
+        // A tolerance the tessellator rejects is skipped, not fatal.
+        if let Ok((mut m, build)) = MeshBaseline::build(&Revolution::new(shape.profile.clone()), tolerance) {
+            record(&mut m, build.seconds, build.bytes);
+        }
+    }
+    rows
+}
