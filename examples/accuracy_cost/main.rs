@@ -143,6 +143,10 @@ mod tests {
         assert!(a.quick);
         assert_eq!(a.out, PathBuf::from("x/y"));
         assert!(args(&["--out"]).unwrap_err().contains("needs a directory"));
-        assert!(args(&["--fast"]).unwrap_err().contains("unknown argument '--fast'"));
+        assert!(
+            args(&["--fast"])
+                .unwrap_err()
+                .contains("unknown argument '--fast'")
+        );
     }
 }

@@ -30,13 +30,14 @@ pub struct ErrorStats {
     pub miss_rate: f64,
     /// Fraction of the reference's misses the method hit.
     pub false_hit_rate: f64,
-    /// Fraction of the reference's hits answered with another root
-    /// (`|t − t_ref| > WRONG_ROOT · scale`).
-    pub wrong_root_rate: f64,
+    /// Fraction of the reference's hits answered with a far hit
+    /// (`|t − t_ref| > FAR_HIT · scale`): another root, a near miss accepted
+    /// within a loose tolerance, or a grazing hit on a coarse mesh.
+    pub far_hit_rate: f64,
 }
 
-/// Relative `t` error above which a hit counts as a different root.
-pub const WRONG_ROOT: f64 = 1e-3;
+/// Relative `t` error above which a hit counts as far from the exact one.
+pub const FAR_HIT: f64 = 1e-3;
 
 /// One row of the intersection table and one point of the plot.
 #[derive(Debug, Clone, PartialEq)]

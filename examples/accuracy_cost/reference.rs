@@ -650,10 +650,13 @@ mod tests {
         assert!(hits > 150, "{hits} hits");
     }
 
+    /// A profile evaluator.
+    type Eval<'a> = &'a dyn Fn(f64) -> Point2<f64>;
+
     /// The roots `t` along the ray, sorted, found by sampling the profile's
     /// `f(u)` on a fine grid of `u` in f64 and bisecting its sign changes
     /// (it can miss a pair of roots closer than the grid step).
-    fn sampled_roots(c: &dyn Fn(f64) -> Point2<f64>, (lo, hi): (f64, f64), r: &Ray) -> Vec<f64> {
+    fn sampled_roots(c: Eval, (lo, hi): (f64, f64), r: &Ray) -> Vec<f64> {
         let (o, d) = (r.origin, r.dir);
         let f = |u: f64| {
             let p = c(u);
@@ -689,7 +692,7 @@ mod tests {
         let (g, e) = glass();
         let vase = Bezier::new(points(&VASE)).expect("valid vase");
         let ev = ExactProfile::from_bezier(&points(&VASE));
-        let shapes: [(&dyn Fn(f64) -> Point2<f64>, (f64, f64), &ExactProfile); 2] = [
+        let shapes: [(Eval, (f64, f64), &ExactProfile); 2] = [
             (&|u| g.eval(u), g.domain(), &e),
             (&|u| vase.eval(u), (0.0, 1.0), &ev),
         ];

@@ -198,9 +198,10 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
     }
     let _ = writeln!(
         md,
-        "\n## Intersection\n\nA wrong root is a hit farther than {:.0e} of the object's \
-         size from the nearest one.\n",
-        crate::model::WRONG_ROOT
+        "\n## Intersection\n\nA far hit is one farther than {:.0e} of the object's size \
+         from the exact nearest hit: another root, a near miss accepted within a loose \
+         tolerance, or a grazing hit on a coarse mesh.\n",
+        crate::model::FAR_HIT
     );
     md.push_str(&table::intersection_table(&results.rows));
     md.push_str("\n![median error against rays/s](intersection.svg)\n\n");
@@ -209,4 +210,72 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
     md.push_str(&table::curve_table(&results.curves));
     md.push_str("\n![deviation against samples](curves.svg)\n");
     md
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every code path of the study at its quick size, written to disk.
+    #[test]
+    fn quick_study_writes_tables_and_plots() {
+        let plan = Plan::quick();
+        let results = collect(&plan, true, &ProgressBar::hidden());
+        assert_eq!(results.rows.len(), 2 * plan.rows());
+        assert_eq!(results.shapes.len(), 2);
+        for s in &results.shapes {
+            assert_eq!(s.rays + s.ambiguous, plan.rays, "{}", s.name);
+        }
+        // The exact intersector at full precision: nothing missed.
+        for row in results.rows.iter().filter(|r| r.knob == "tol 1e-14") {
+            assert_eq!(row.errors.miss_rate, 0.0, "{}", row.shape);
+            assert!(
+                row.errors.max < 1e-12,
+                "{}: {:e}",
+                row.shape,
+                row.errors.max
+            );
+        }
+        // The mesh's error is its tessellation's, far above rounding.
+        for row in results.rows.iter().filter(|r| r.series == "parry TriMesh") {
+            assert!(row.errors.median > 1e-6, "{}", row.shape);
+            assert!(row.memory_bytes > 10_000);
+        }
+        let dir = std::env::temp_dir().join(format!("accuracy_cost_test_{}", std::process::id()));
+        let files = write(&dir, &results, &plan).unwrap();
+        assert_eq!(files.len(), 4);
+        let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+        assert!(md.contains("| vase | exact (revolve) | tol 1e-2 |"));
+        assert!(md.contains("| wine glass | parry TriMesh |"));
+        assert!(md.contains("## Curves"));
+        let svg = std::fs::read_to_string(dir.join("intersection.svg")).unwrap();
+        assert!(svg.contains("course Newton") && !svg.contains("NaN"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn series_group_rows_by_method_and_floor_zero_errors() {
+        let row = |series: &str, rate: f64, median: f64| Row {
+            shape: "vase",
+            series: series.to_string(),
+            knob: String::new(),
+            errors: crate::model::ErrorStats {
+                median,
+                ..Default::default()
+            },
+            rays_per_second: rate,
+            memory_bytes: 0,
+            build_seconds: 0.0,
+        };
+        let rows = [
+            row("exact", 1e6, 0.0),
+            row("course Newton", 1e5, 1e-9),
+            row("exact", 2e6, 1e-3),
+        ];
+        let s = series_of(&rows, "vase", |r| r.errors.median);
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0].points, vec![(1e6, ERROR_FLOOR), (2e6, 1e-3)]);
+        assert!(s[0].connect && !s[1].connect);
+        assert!(series_of(&rows, "wine glass", |r| r.errors.median).is_empty());
+    }
 }
