@@ -409,6 +409,25 @@ fn flattened_parabola_stays_within_its_bound() {
     }
 }
 
+/// Flattening a parabola is as economical as its curvature allows: with
+/// `|C″| = 8` everywhere, equal parts of width `w` deviate exactly `w²` from
+/// their chords, so 32 parts are the fewest that meet `1e-3` (31 would
+/// deviate 1.04e-3), and the certified bound is the true deviation.
+#[test]
+fn flattened_parabola_is_tight() {
+    let c = Bezier::new(vec![
+        Point2::new(0.0, 0.0),
+        Point2::new(1.0, 2.0),
+        Point2::new(2.0, 0.0),
+    ])
+    .unwrap();
+    let f = c.flatten(1e-3).unwrap();
+    assert_eq!(f.samples.len(), 33);
+    let exact = (1.0_f64 / 32.0).powi(2);
+    assert!(f.bound >= exact && f.bound <= 1e-3, "bound {}", f.bound);
+    assert!(f.bound - exact < 1e-12, "bound {} vs deviation {exact}", f.bound);
+}
+
 #[test]
 fn bezier_new_keeps_points_in_order() {
     let pts: Vec<_> = (0..5).map(|i| Point2::new(i as f64, -(i as f64))).collect();

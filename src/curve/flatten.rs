@@ -8,6 +8,13 @@
 //!
 //! `dist(P(t), chord) ≤ maxᵢ dist(Pᵢ, [P₀, Pₙ])` for every `t` in the piece.
 //!
+//! A piece that fails this test but whose second derivative is small enough
+//! is cut into at most a dozen equal parameter parts at once, each certified
+//! by `|C(s) − chord| ≤ w²/8 · max|C″|` for a part of width `w` (tight for
+//! parabolas, where the hull bound is twice the deviation); pieces needing
+//! more parts are halved first, so parts are short only where the curvature
+//! is high.
+//!
 //! The bound we compare against the tolerance is that maximum plus an allowance
 //! for the rounding of the subdivided control points
 //! (`2ε · scale · (n + 1) · (depth + 1)`), so it holds for the exact curve, not
@@ -148,6 +155,22 @@ fn refine<C: Curve<D>, const D: usize>(
         });
         return Ok(());
     }
+    if let Some(parts) = uniform_parts(c, acc.tolerance - rounding) {
+        // Equal parts, each certified by the second-derivative bound.
+        let second = second_derivative_bound(c);
+        for k in 0..parts {
+            let t = a + (b - a) * (k as f64 / parts as f64);
+            let (point, derivative) = acc.curve.eval_with_derivative(t);
+            acc.samples.push(CurveSample {
+                t,
+                point,
+                derivative,
+            });
+        }
+        let part = 1.0 / parts as f64;
+        acc.bound = acc.bound.max(second * part * part / 8.0 + rounding);
+        return Ok(());
+    }
     if depth >= MAX_DEPTH {
         return Err(Error::ToleranceTooSmall {
             tolerance: acc.tolerance,
@@ -162,6 +185,49 @@ fn refine<C: Curve<D>, const D: usize>(
             refine(acc, right, mid, b, depth + 1)
         })
     })
+}
+
+/// Pieces are cut into at most this many equal parts at once; a piece that
+/// needs more is halved first, so that parts stay short only where the
+/// curvature is high.
+const MAX_UNIFORM_PARTS: usize = 12;
+
+/// How many equal parameter parts of the piece `c` certainly deviate from
+/// their chords by at most `tolerance`, if at most [`MAX_UNIFORM_PARTS`].
+///
+/// On a part of width `w` (in the piece's parameter `s ∈ [0, 1]`) the curve
+/// minus its chord's linear interpolant is `e(s) = −∫ G(s, σ) C″(σ) dσ` with
+/// the Green's function `G ≥ 0`, `∫ G = (s − s₀)(s₁ − s)/2 ≤ w²/8`, so
+/// `|e| ≤ w²/8 · max|C″|` ([`second_derivative_bound`]); the chord point
+/// `L(s)` is on the segment, so this bounds the distance to it too.
+fn uniform_parts<const D: usize>(c: &[SVector<f64, D>], tolerance: f64) -> Option<usize> {
+    if c.len() < 3 || !(tolerance > 0.0) {
+        return None;
+    }
+    let parts = (second_derivative_bound(c) / (8.0 * tolerance))
+        .sqrt()
+        .ceil();
+    (parts.is_finite() && parts >= 1.0 && parts <= MAX_UNIFORM_PARTS as f64)
+        .then_some(parts as usize)
+}
+
+/// `max |C″(s)|` over the piece `c` (parameter `s ∈ [0, 1]`), bounded by
+/// the largest control point of the second hodograph,
+/// `n(n − 1)·maxᵢ |cᵢ₊₂ − 2cᵢ₊₁ + cᵢ|` (convex hull; the norm is convex),
+/// each difference enlarged by its rounding, `4ε(|cᵢ₊₂| + 2|cᵢ₊₁| + |cᵢ|)`.
+fn second_derivative_bound<const D: usize>(c: &[SVector<f64, D>]) -> f64 {
+    let n = c.len().saturating_sub(1) as f64;
+    let max = c
+        .windows(3)
+        .map(|w| {
+            let size = w[2].norm() + 2.0 * w[1].norm() + w[0].norm();
+            (w[2] - w[1] * 2.0 + w[0]).norm() + 4.0 * f64::EPSILON * size
+        })
+        .fold(
+            0.0,
+            |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+        );
+    n * (n - 1.0) * max
 }
 
 /// `maxᵢ dist(cᵢ, [c₀, cₙ])`: how far the control polygon strays from the chord.
