@@ -201,7 +201,7 @@ const MAX_UNIFORM_PARTS: usize = 12;
 /// `|e| ≤ w²/8 · max|C″|` ([`second_derivative_bound`]); the chord point
 /// `L(s)` is on the segment, so this bounds the distance to it too.
 fn uniform_parts<const D: usize>(c: &[SVector<f64, D>], tolerance: f64) -> Option<usize> {
-    if c.len() < 3 || !(tolerance > 0.0) {
+    if c.len() < 3 || tolerance.is_nan() || tolerance <= 0.0 {
         return None;
     }
     let parts = (second_derivative_bound(c) / (8.0 * tolerance))
