@@ -185,6 +185,9 @@ pub(crate) struct LocalHit {
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) theta: f64,
+    /// `(sin θ, cos θ)`, as the point was formed from them (no
+    /// trigonometry needed for the normal).
+    pub(crate) sin_cos: (f64, f64),
     pub(crate) point: Point3<f64>,
     /// The profile's unit tangent there, from the span's Bézier form, when
     /// the derivative is clearly non-zero (`None` near a pole: the caller
@@ -651,6 +654,7 @@ impl SpanTable {
             t,
             u,
             theta,
+            sin_cos: (sn, cs),
             point: Point3::new(x * cs, y, -x * sn),
             tangent,
             x,
