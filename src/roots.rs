@@ -95,7 +95,7 @@ pub fn find_roots_to(coeffs: &[f64], error: f64, width: f64, mut found: impl FnM
     if coeffs.is_empty() {
         return;
     }
-    let scale = coeffs.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    let scale = magnitude(coeffs);
     let search = Search {
         error: error.max(0.0),
         growth: 2.0 * f64::EPSILON * scale,
@@ -167,11 +167,7 @@ enum Signs {
 }
 
 fn classify(c: &[f64], e: f64) -> Signs {
-    let (lo, hi) = c
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        });
+    let (lo, hi) = extremes(c.iter().copied());
     if lo > e || hi < -e {
         Signs::Definite
     } else if lo >= -e && hi <= e {
@@ -179,6 +175,35 @@ fn classify(c: &[f64], e: f64) -> Signs {
     } else {
         Signs::Mixed
     }
+}
+
+/// The least and the greatest of `values` (infinities for none), by plain
+/// comparisons: NaNs are passed over as `f64::min` and `f64::max` pass them,
+/// without their NaN handling per element (this runs for every piece).
+#[inline]
+fn extremes(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for x in values {
+        if x < lo {
+            lo = x;
+        }
+        if x > hi {
+            hi = x;
+        }
+    }
+    (lo, hi)
+}
+
+/// The largest magnitude `max|cᵢ|` (0 for none), as [`extremes`] finds it.
+#[inline]
+fn magnitude(c: &[f64]) -> f64 {
+    let mut m = 0.0;
+    for x in c {
+        if x.abs() > m {
+            m = x.abs();
+        }
+    }
+    m
 }
 
 /// Whether every polynomial whose coefficients lie within `e` of `c` has
@@ -318,12 +343,7 @@ impl Search {
         if n < 2 {
             return false;
         }
-        let (lo2, hi2) = c
-            .windows(3)
-            .map(|w| w[2] - 2.0 * w[1] + w[0])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
-                (lo.min(d), hi.max(d))
-            });
+        let (lo2, hi2) = extremes(c.windows(3).map(|w| w[2] - 2.0 * w[1] + w[0]));
         let sigma = if lo2 > 4.0 * e {
             1.0
         } else if hi2 < -4.0 * e {
@@ -331,7 +351,7 @@ impl Search {
         } else {
             return false;
         };
-        let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let scale = magnitude(c);
         let noise = 4.0 * n as f64 * f64::EPSILON * scale;
         // The critical point: the one root of the rising g′ (its ends must
         // certainly differ in sign, else the piece is monotonic or unclear).
@@ -389,12 +409,7 @@ impl Search {
     /// Whether the derivative's coefficients `n(cᵢ₊₁ − cᵢ)` certainly share
     /// one sign (each difference is known to within `2e`).
     fn monotonic(&self, c: &[f64], e: f64) -> bool {
-        let (lo, hi) = c
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
-                (lo.min(d), hi.max(d))
-            });
+        let (lo, hi) = extremes(c.windows(2).map(|w| w[1] - w[0]));
         let tol = 2.0 * e;
         lo > tol || hi < -tol
     }
@@ -450,7 +465,7 @@ fn refine_within(
     let to_u = |s: f64| a + (b - a) * s;
     // f·sign rises through the root.
     let sign = if rising { 1.0 } else { -1.0 };
-    let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let scale = magnitude(c);
     let noise = 4.0 * n.max(1) as f64 * f64::EPSILON * scale;
     // Which side of the root `x` certainly is: −1 before, 1 after, 0 unknown.
     let side = |f: f64| {
@@ -612,9 +627,13 @@ impl Taylor {
 /// degree 2.
 fn curvature_bound(c: &[f64], scale: f64) -> f64 {
     let n = c.len().saturating_sub(1) as f64;
-    let second = c
-        .windows(3)
-        .fold(0.0_f64, |m, w| m.max((w[2] - 2.0 * w[1] + w[0]).abs()));
+    let mut second = 0.0;
+    for w in c.windows(3) {
+        let d = (w[2] - 2.0 * w[1] + w[0]).abs();
+        if d > second {
+            second = d;
+        }
+    }
     n * (n - 1.0).max(0.0) * (second + 16.0 * f64::EPSILON * scale)
 }
 
