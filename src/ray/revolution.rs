@@ -505,8 +505,9 @@ impl SpanTable {
         let (xs, ys) = self.coeffs(k);
         let y = crate::bernstein::eval(ys, s).unwrap_or(0.0);
         let t_height = (y - q.o.y) / q.d.y;
-        let horizontal = q.d.x.hypot(q.d.z);
-        let times = if q.d.y.abs() >= horizontal {
+        // |d_y| ≥ |d_xz|, compared squared (|d| is finite, so the squares
+        // are too).
+        let times = if q.d.y * q.d.y >= q.radius.0 {
             [Some(t_height), None]
         } else {
             let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
