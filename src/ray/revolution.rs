@@ -121,8 +121,8 @@ const SPAN_SLACK: f64 = 1e-12;
 pub(crate) struct SpanTable {
     degree: usize,
     spans: Vec<Span>,
-    /// Runs of [`GROUP`] consecutive spans with their joint ranges: a ray
-    /// that misses a group's cylinder skips its spans' tests.
+    /// Runs of [`group_size`] consecutive spans with their joint ranges: a
+    /// ray that misses a group's cylinder skips its spans' tests.
     groups: Vec<Group>,
     /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
     xs: Vec<f64>,
@@ -138,8 +138,17 @@ pub(crate) struct SpanTable {
     domain: (f64, f64),
 }
 
-/// Spans per culling group.
-const GROUP: usize = 8;
+/// Spans per culling group for a profile of `n` spans: `⌈√n⌉`. A ray tests
+/// all `n / g` groups and the `g` spans of each group it enters; for the one
+/// or two groups a ray typically enters, that is least for `g` near `√n`.
+fn group_size(n: usize) -> usize {
+    let root = n.isqrt();
+    if root * root < n {
+        root + 1
+    } else {
+        root.max(1)
+    }
+}
 
 /// Consecutive spans `first..end` and the union of their ranges.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -286,11 +295,12 @@ impl SpanTable {
             });
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
         let domain = (table[0].u.0, table[table.len() - 1].u.1);
+        let group = group_size(table.len());
         Some(SpanTable {
             domain,
             degree,
             groups: table
-                .chunks(GROUP)
+                .chunks(group)
                 .enumerate()
                 .map(|(g, run)| Group {
                     bounds: run.iter().skip(1).fold(run[0], |b, s| Span {
@@ -298,8 +308,8 @@ impl SpanTable {
                         y: (b.y.0.min(s.y.0), b.y.1.max(s.y.1)),
                         r: (b.r.0.min(s.r.0), b.r.1.max(s.r.1)),
                     }),
-                    first: g * GROUP,
-                    end: g * GROUP + run.len(),
+                    first: g * group,
+                    end: g * group + run.len(),
                 })
                 .collect(),
             spans: table,
