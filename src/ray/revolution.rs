@@ -615,8 +615,9 @@ impl SpanTable {
         // stalls a little off. There the hit is where the ray meets the axis
         // point (0, y(s*), 0) with x(s*) = 0: solve that directly and keep it
         // if it fits better.
-        if q.d.y != 0.0 && best.3.x.abs() <= 1e-6 * self.scale {
-            if let Some(s_axis) = axis_root(xs, best.1) {
+        let (_, s_best, _, at_best) = best;
+        if q.d.y != 0.0 && at_best.x.abs() <= 1e-6 * self.scale {
+            if let Some(s_axis) = axis_root(xs, s_best) {
                 let axis = eval(s_axis);
                 let y = axis.y;
                 let t_axis = (y - q.o.y) / q.d.y;
