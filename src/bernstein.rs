@@ -170,14 +170,6 @@ pub fn eval<T: Coefficient>(c: &[T], t: f64) -> Option<T> {
 /// [`de_casteljau_with_derivative`]). `None` for an empty slice.
 #[inline]
 pub fn eval_with_derivative<T: Coefficient>(c: &[T], t: f64) -> Option<(T, T)> {
-    #[inline(always)]
-    fn both<T: Coefficient, const N: usize>(a: [T; N], t: f64) -> (T, T) {
-        if N == 1 {
-            return (a[0], a[0] * 0.0);
-        }
-        let r = cascade(a, t, N.saturating_sub(2));
-        (lerp(r[0], r[1], t), (r[1] - r[0]) * (N - 1) as f64)
-    }
     fixed_sizes!(
         c,
         both,
@@ -189,6 +181,44 @@ pub fn eval_with_derivative<T: Coefficient>(c: &[T], t: f64) -> Option<(T, T)> {
         s.copy_from_slice(c);
         de_casteljau_with_derivative(s, t)
     })
+}
+
+/// The value and derivative from a fixed-size array: the cascade down to the
+/// last-but-one level, whose two points give both.
+#[inline(always)]
+fn both<T: Coefficient, const N: usize>(a: [T; N], t: f64) -> (T, T) {
+    if N == 1 {
+        return (a[0], a[0] * 0.0);
+    }
+    let r = cascade(a, t, N.saturating_sub(2));
+    (lerp(r[0], r[1], t), (r[1] - r[0]) * (N - 1) as f64)
+}
+
+/// The values and first derivatives at `t` of two polynomials of the same
+/// degree, `[(a(t), a′(t)), (b(t), b′(t))]`: the two coordinates of a planar
+/// Bézier curve stored apart. The results are exactly those of two calls of
+/// [`eval_with_derivative`]; the size is dispatched once and both cascades
+/// are unrolled together (degree ≤ 16). `None` when the lengths differ or are
+/// zero.
+#[inline]
+pub(crate) fn eval_pair_with_derivative(a: &[f64], b: &[f64], t: f64) -> Option<[(f64, f64); 2]> {
+    if a.len() != b.len() {
+        return None;
+    }
+    macro_rules! pair_sizes {
+        ($($n:literal),*) => {
+            match a.len() {
+                $($n => {
+                    if let (Ok(a), Ok(b)) = (<[f64; $n]>::try_from(a), <[f64; $n]>::try_from(b)) {
+                        return Some([both(a, t), both(b, t)]);
+                    }
+                })*
+                _ => {}
+            }
+        };
+    }
+    pair_sizes!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17);
+    Some([eval_with_derivative(a, t)?, eval_with_derivative(b, t)?])
 }
 
 /// Replaces the coefficients of `p` (degree `n = c.len() − 1`) by those of its
@@ -317,6 +347,26 @@ mod tests {
         assert_eq!(len, 4);
         let d2 = de_casteljau(&mut h[..len], 0.3).unwrap();
         assert!((d - d2).abs() < 1e-14);
+    }
+
+    #[test]
+    fn pair_evaluation_is_two_single_evaluations() {
+        let xs = [1.0, 2.0, -1.0, 4.0, 0.5, 3.0];
+        let ys = [0.3, -2.0, 1.5, 0.25, 7.0, -1.0];
+        for len in 1..=xs.len() {
+            for k in 0..=10 {
+                let t = f64::from(k) / 10.0;
+                let pair = eval_pair_with_derivative(&xs[..len], &ys[..len], t).unwrap();
+                assert_eq!(pair[0], eval_with_derivative(&xs[..len], t).unwrap());
+                assert_eq!(pair[1], eval_with_derivative(&ys[..len], t).unwrap());
+            }
+        }
+        // Beyond the unrolled sizes, and mismatched or empty rows.
+        let long: Vec<f64> = (0..20).map(|i| f64::from(i).sin()).collect();
+        let pair = eval_pair_with_derivative(&long, &long, 0.3).unwrap();
+        assert_eq!(pair[1], eval_with_derivative(&long, 0.3).unwrap());
+        assert_eq!(eval_pair_with_derivative(&xs, &ys[..3], 0.5), None);
+        assert_eq!(eval_pair_with_derivative(&[], &[], 0.5), None);
     }
 
     #[test]

@@ -24,7 +24,8 @@
 //! Everything else is split at its midpoint. A piece with one root is refined
 //! by safeguarded Newton iteration on a certain-sign bracket (bisection
 //! whenever a step leaves it or stalls) and confirmed by the signs either
-//! side. Pieces narrower
+//! side, or earlier by a Taylor bound that puts the Newton point within the
+//! requested resolution of the root. Pieces narrower
 //! than `2⁻ᴹᴬˣ` that still cannot be decided are reported as roots at their
 //! midpoint; where every coefficient is within the error of zero the
 //! polynomial vanishes identically on the piece and the whole piece is
@@ -94,7 +95,7 @@ pub fn find_roots_to(coeffs: &[f64], error: f64, width: f64, mut found: impl FnM
     if coeffs.is_empty() {
         return;
     }
-    let scale = coeffs.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    let scale = magnitude(coeffs);
     let search = Search {
         error: error.max(0.0),
         growth: 2.0 * f64::EPSILON * scale,
@@ -166,11 +167,7 @@ enum Signs {
 }
 
 fn classify(c: &[f64], e: f64) -> Signs {
-    let (lo, hi) = c
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-            (lo.min(x), hi.max(x))
-        });
+    let (lo, hi) = extremes(c.iter().copied());
     if lo > e || hi < -e {
         Signs::Definite
     } else if lo >= -e && hi <= e {
@@ -178,6 +175,35 @@ fn classify(c: &[f64], e: f64) -> Signs {
     } else {
         Signs::Mixed
     }
+}
+
+/// The least and the greatest of `values` (infinities for none), by plain
+/// comparisons: NaNs are passed over as `f64::min` and `f64::max` pass them,
+/// without their NaN handling per element (this runs for every piece).
+#[inline]
+fn extremes(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for x in values {
+        if x < lo {
+            lo = x;
+        }
+        if x > hi {
+            hi = x;
+        }
+    }
+    (lo, hi)
+}
+
+/// The largest magnitude `max|cᵢ|` (0 for none), as [`extremes`] finds it.
+#[inline]
+fn magnitude(c: &[f64]) -> f64 {
+    let mut m = 0.0;
+    for x in c {
+        if x.abs() > m {
+            m = x.abs();
+        }
+    }
+    m
 }
 
 /// Whether every polynomial whose coefficients lie within `e` of `c` has
@@ -317,12 +343,7 @@ impl Search {
         if n < 2 {
             return false;
         }
-        let (lo2, hi2) = c
-            .windows(3)
-            .map(|w| w[2] - 2.0 * w[1] + w[0])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
-                (lo.min(d), hi.max(d))
-            });
+        let (lo2, hi2) = extremes(c.windows(3).map(|w| w[2] - 2.0 * w[1] + w[0]));
         let sigma = if lo2 > 4.0 * e {
             1.0
         } else if hi2 < -4.0 * e {
@@ -330,7 +351,7 @@ impl Search {
         } else {
             return false;
         };
-        let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let scale = magnitude(c);
         let noise = 4.0 * n as f64 * f64::EPSILON * scale;
         // The critical point: the one root of the rising g′ (its ends must
         // certainly differ in sign, else the piece is monotonic or unclear).
@@ -388,12 +409,7 @@ impl Search {
     /// Whether the derivative's coefficients `n(cᵢ₊₁ − cᵢ)` certainly share
     /// one sign (each difference is known to within `2e`).
     fn monotonic(&self, c: &[f64], e: f64) -> bool {
-        let (lo, hi) = c
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
-                (lo.min(d), hi.max(d))
-            });
+        let (lo, hi) = extremes(c.windows(2).map(|w| w[1] - w[0]));
         let tol = 2.0 * e;
         lo > tol || hi < -tol
     }
@@ -413,6 +429,12 @@ impl Search {
 /// after such a step is already accurate to about its square), or the value
 /// is within the noise, the root is confirmed by certain, opposite signs a
 /// little way either side.
+///
+/// Most roots end one evaluation earlier and without those probes: once a
+/// step is below the square root of the resolution, the Newton point is
+/// about as accurate as the resolution, and [`Taylor::newton_error`] proves
+/// it (from the values already computed and a bound on `|f″|` over the
+/// piece). A root so proven is returned as `Ok` too.
 ///
 /// `Ok(u)` is a confirmed root. `Err(u)` is the best estimate where the
 /// signs could not be confirmed: near a touch of zero within the rounding
@@ -443,7 +465,7 @@ fn refine_within(
     let to_u = |s: f64| a + (b - a) * s;
     // f·sign rises through the root.
     let sign = if rising { 1.0 } else { -1.0 };
-    let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let scale = magnitude(c);
     let noise = 4.0 * n.max(1) as f64 * f64::EPSILON * scale;
     // Which side of the root `x` certainly is: −1 before, 1 after, 0 unknown.
     let side = |f: f64| {
@@ -455,6 +477,9 @@ fn refine_within(
             0
         }
     };
+    // The rounding of f′: twice that of the two values it is the
+    // difference of, times n.
+    let derivative_noise = 2.0 * n as f64 * noise;
     let (mut lo, mut hi) = bracket;
     let resolution = (2.0 * f64::EPSILON * a.abs().max(b.abs()).max(f64::MIN_POSITIVE) / (b - a))
         .max(done / (b - a));
@@ -470,6 +495,21 @@ fn refine_within(
         }
         let newton = s - f / df;
         let step = (newton - s).abs();
+        if step * step <= resolution {
+            let taylor = Taylor {
+                value: f,
+                slope: df,
+                noise,
+                derivative_noise,
+                curvature: curvature_bound(c, scale),
+            };
+            if taylor
+                .newton_error(s, step, (lo, hi))
+                .is_some_and(|e| e <= resolution)
+            {
+                return Ok(to_u(newton.clamp(lo, hi)));
+            }
+        }
         let small_step = step <= resolution.max(f64::EPSILON * s);
         if small_step || side(f) == 0 {
             // Confirm by certain signs either side, at a distance the noise
@@ -515,6 +555,86 @@ fn refine_within(
         }
     }
     Err(to_u(s.clamp(lo, hi)))
+}
+
+/// A polynomial's value and slope at one point `s` as computed, with bounds
+/// on their rounding and on the second derivative near `s`.
+struct Taylor {
+    /// `f(s)`, within `noise` of the exact value.
+    value: f64,
+    /// `f′(s)`, within `derivative_noise` of the exact value.
+    slope: f64,
+    noise: f64,
+    derivative_noise: f64,
+    /// `|f″| ≤ curvature` on the piece (`[0, 1]`).
+    curvature: f64,
+}
+
+impl Taylor {
+    /// A bound on `|r − N|` for the Newton point `N = s − f(s)/f′(s)` (as
+    /// computed; `step = |N − s|`) and the one root `r` of the bracket
+    /// `[lo, hi] ⊆ [0, 1]`; `None` when the bound does not apply.
+    ///
+    /// With `|f(s)| ≤ F` and `|f′(s)| ≥ D > 0` (the computed values widened
+    /// by their rounding) and `|f″| ≤ L`, Taylor's theorem gives
+    /// `f(s ± δ) = f(s) ± f′(s)δ + ½f″(ξ)δ²`. With `D² > 2LF` and
+    /// `δ₋ = 2F / (D + √(D² − 2LF))`, the smaller root of `½Lδ² − Dδ + F`,
+    /// `f` therefore takes (weakly) opposite signs at `s ± δ₋`, and at the
+    /// one towards the Newton point the sign opposite to `f(s)`'s. So a root
+    /// lies between `s` and `s ± δ₋` on the Newton side when the sign of
+    /// `f(s)` is certain, else within `δ₋` of `s`; if that interval lies in
+    /// the bracket, it is the bracket's root. (Otherwise the tangent may
+    /// point at a root beyond the bracket while the bracket's own is far;
+    /// near a touch of zero `D² ≤ 2LF`.) With `δ = |r − s| ≤ δ₋`, Taylor's
+    /// theorem at `r` gives `r − N = f̃/f̃′ − f/f′ − ½f″(ξ)δ²/f′(s)`: the
+    /// rounding of the quotient, at most `(noise + F·noise′/D)/D`, the
+    /// curvature term, at most `Lδ₋²/(2D)`, and the rounding of `N` itself,
+    /// `2ε(|s| + step)`.
+    fn newton_error(&self, s: f64, step: f64, (lo, hi): (f64, f64)) -> Option<f64> {
+        let d = self.slope.abs() - self.derivative_noise;
+        let big_f = self.value.abs() + self.noise;
+        let l = self.curvature;
+        let disc = d * d - 2.0 * l * big_f;
+        if !(d > 0.0 && disc > 0.0) {
+            return None;
+        }
+        let near = 2.0 * big_f / (d + disc.sqrt());
+        // Where a root certainly is: on the Newton side of s, or on either
+        // side when f(s) is within its rounding of zero.
+        let (from, to) = if self.value.abs() > self.noise {
+            let newton_side = if (self.value > 0.0) == (self.slope > 0.0) {
+                -near
+            } else {
+                near
+            };
+            (s.min(s + newton_side), s.max(s + newton_side))
+        } else {
+            (s - near, s + near)
+        };
+        if from < lo || to > hi {
+            return None;
+        }
+        let curve = 0.5 * l * near * near / d;
+        let quotient = (self.noise + big_f * self.derivative_noise / d) / d;
+        Some(curve + quotient + 2.0 * f64::EPSILON * (s.abs() + step))
+    }
+}
+
+/// A bound on `|f″|` over `[0, 1]` for the polynomial with Bernstein
+/// coefficients `c` of degree `n`: the second derivative's coefficients
+/// `n(n − 1)(cᵢ₊₂ − 2cᵢ₊₁ + cᵢ)` bound it (convex hull), and each second
+/// difference is computed to within `16ε·max|cᵢ|` (`scale`). Zero below
+/// degree 2.
+fn curvature_bound(c: &[f64], scale: f64) -> f64 {
+    let n = c.len().saturating_sub(1) as f64;
+    let mut second = 0.0;
+    for w in c.windows(3) {
+        let d = (w[2] - 2.0 * w[1] + w[0]).abs();
+        if d > second {
+            second = d;
+        }
+    }
+    n * (n - 1.0).max(0.0) * (second + 16.0 * f64::EPSILON * scale)
 }
 
 /// Where the control polygon `(i/n, cᵢ)` first crosses zero (0 if it does
@@ -691,6 +811,95 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The Taylor bound of a point: its Newton point and the bound.
+    fn taylor_at(c: &[f64], s: f64, bracket: (f64, f64)) -> (f64, Option<f64>) {
+        let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let n = (c.len() - 1) as f64;
+        let noise = 4.0 * n * f64::EPSILON * scale;
+        let (f, df) = eval_with_derivative(c, s).unwrap();
+        let newton = s - f / df;
+        let taylor = Taylor {
+            value: f,
+            slope: df,
+            noise,
+            derivative_noise: 2.0 * n * noise,
+            curvature: curvature_bound(c, scale),
+        };
+        (newton, taylor.newton_error(s, (newton - s).abs(), bracket))
+    }
+
+    #[test]
+    fn taylor_bound_holds_near_simple_roots() {
+        let want = [0.1, 0.37, 0.5, 0.82, 0.99];
+        let c = from_roots(&want);
+        for (i, &r) in want.iter().enumerate() {
+            // The isolating interval: halfway to the neighbours.
+            let lo = if i == 0 { 0.0 } else { 0.5 * (want[i - 1] + r) };
+            let hi = want.get(i + 1).map_or(1.0, |&w| 0.5 * (w + r));
+            for offset in [1e-2, 1e-3, 1e-5, 1e-7, 1e-9, -1e-9, -1e-5, -1e-2] {
+                let s = (r + offset).clamp(lo, hi);
+                let (newton, bound) = taylor_at(&c, s, (lo, hi));
+                if let Some(e) = bound {
+                    assert!(
+                        (newton - r).abs() <= e,
+                        "root {r}, from {s}: {newton} ± {e}"
+                    );
+                }
+                // Close to a simple root the bound applies, and it is about
+                // the square of the distance.
+                if offset.abs() <= 1e-5 {
+                    assert!(
+                        bound.is_some_and(|e| e < 1e-6),
+                        "root {r}, from {s}: {bound:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn taylor_bound_declines_when_the_tangent_points_past_the_bracket() {
+        // (u + 0.01)(u − 0.9): the bracket [0.02, 1] holds the root 0.9, but
+        // at 0.02 the tangent points at −0.01, just outside it. A bound
+        // around the Newton point there would certify a root that the
+        // bracket does not hold.
+        let c = from_roots(&[-0.01, 0.9]);
+        let (newton, bound) = taylor_at(&c, 0.02, (0.02, 1.0));
+        assert!((newton + 0.01).abs() < 2e-3, "{newton}");
+        assert_eq!(bound, None);
+        // On a bracket that holds the near root it applies.
+        let (newton, bound) = taylor_at(&c, 0.02, (-0.05, 0.4));
+        assert!(bound.is_some_and(|e| (newton + 0.01).abs() <= e));
+        // At a touch of zero (a double root) it never applies.
+        let touch = from_roots(&[0.5, 0.5]);
+        for s in [0.49, 0.4999, 0.5 + 1e-7] {
+            assert_eq!(taylor_at(&touch, s, (0.0, 1.0)).1, None, "{s}");
+        }
+        // Rising through zero beside a near-touch: the piece's one root is
+        // found, not the near-touch, from any start.
+        let mut p = from_roots(&[0.2, 0.7, 0.7]);
+        p.iter_mut().for_each(|x| *x += 1e-9);
+        for k in 0..=100 {
+            let s0 = 0.65 + 0.1 * f64::from(k) / 100.0;
+            // (Lifted by 1e-9, the root moves by 1e-9 / f′(0.2) = 4e-9.)
+            let u = refine_from(&p, 0.0, 1.0, 0.0, s0).expect("confirmed");
+            assert!((u - 0.2).abs() < 1e-8, "from {s0}: {u}");
+        }
+    }
+
+    #[test]
+    fn close_roots_are_all_found_to_the_candidate_width() {
+        let width = 1.0 / f64::from(1u32 << 30);
+        // (Closer roots are ill-conditioned: the coefficients' rounding
+        // moves them by more than the width.)
+        let want = [0.2, 0.5, 0.51, 0.53, 0.75];
+        let mut got = Vec::new();
+        find_roots_to(&from_roots(&want), 0.0, width, |r| got.push(r));
+        let got = intervals(&got);
+        assert_eq!(got.len(), want.len(), "{got:?}");
+        assert_matches(&got, &want, width);
     }
 
     #[test]

@@ -23,7 +23,7 @@
 //! where the ray enters their bounding cylinder; the search stops once the
 //! best hit is nearer than the next span.
 
-use crate::bernstein::{binomial, eval_with_derivative};
+use crate::bernstein::{binomial, eval_pair_with_derivative, eval_with_derivative};
 use crate::roots::{Root, find_roots_to};
 use crate::scratch::with_scratch;
 use crate::{BezierSpan, Tolerance};
@@ -121,8 +121,8 @@ const SPAN_SLACK: f64 = 1e-12;
 pub(crate) struct SpanTable {
     degree: usize,
     spans: Vec<Span>,
-    /// Runs of [`GROUP`] consecutive spans with their joint ranges: a ray
-    /// that misses a group's cylinder skips its spans' tests.
+    /// Runs of [`group_size`] consecutive spans with their joint ranges: a
+    /// ray that misses a group's cylinder skips its spans' tests.
     groups: Vec<Group>,
     /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
     xs: Vec<f64>,
@@ -138,8 +138,17 @@ pub(crate) struct SpanTable {
     domain: (f64, f64),
 }
 
-/// Spans per culling group.
-const GROUP: usize = 8;
+/// Spans per culling group for a profile of `n` spans: `⌈√n⌉`. A ray tests
+/// all `n / g` groups and the `g` spans of each group it enters; for the one
+/// or two groups a ray typically enters, that is least for `g` near `√n`.
+fn group_size(n: usize) -> usize {
+    let root = n.isqrt();
+    if root * root < n {
+        root + 1
+    } else {
+        root.max(1)
+    }
+}
 
 /// Consecutive spans `first..end` and the union of their ranges.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -159,12 +168,35 @@ struct Span {
     r: (f64, f64),
 }
 
+/// A span's profile point `(x, y)` at one parameter and its derivative
+/// `(x′, y′)` there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ProfilePoint {
+    x: f64,
+    y: f64,
+    dx: f64,
+    dy: f64,
+}
+
+impl ProfilePoint {
+    /// The point of the span with coefficients `xs`, `ys` at `s` (both
+    /// coordinates in one de Casteljau pass); zeros for an empty span.
+    #[inline]
+    fn of_span(xs: &[f64], ys: &[f64], s: f64) -> Self {
+        let [(x, dx), (y, dy)] = eval_pair_with_derivative(xs, ys, s).unwrap_or([(0.0, 0.0); 2]);
+        ProfilePoint { x, y, dx, dy }
+    }
+}
+
 /// A hit in the local frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct LocalHit {
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) theta: f64,
+    /// `(sin θ, cos θ)`, as the point was formed from them (no
+    /// trigonometry needed for the normal).
+    pub(crate) sin_cos: (f64, f64),
     pub(crate) point: Point3<f64>,
     /// The profile's unit tangent there, from the span's Bézier form, when
     /// the derivative is clearly non-zero (`None` near a pole: the caller
@@ -263,11 +295,12 @@ impl SpanTable {
             });
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
         let domain = (table[0].u.0, table[table.len() - 1].u.1);
+        let group = group_size(table.len());
         Some(SpanTable {
             domain,
             degree,
             groups: table
-                .chunks(GROUP)
+                .chunks(group)
                 .enumerate()
                 .map(|(g, run)| Group {
                     bounds: run.iter().skip(1).fold(run[0], |b, s| Span {
@@ -275,8 +308,8 @@ impl SpanTable {
                         y: (b.y.0.min(s.y.0), b.y.1.max(s.y.1)),
                         r: (b.r.0.min(s.r.0), b.r.1.max(s.r.1)),
                     }),
-                    first: g * GROUP,
-                    end: g * GROUP + run.len(),
+                    first: g * group,
+                    end: g * group + run.len(),
                 })
                 .collect(),
             spans: table,
@@ -482,8 +515,9 @@ impl SpanTable {
         let (xs, ys) = self.coeffs(k);
         let y = crate::bernstein::eval(ys, s).unwrap_or(0.0);
         let t_height = (y - q.o.y) / q.d.y;
-        let horizontal = q.d.x.hypot(q.d.z);
-        let times = if q.d.y.abs() >= horizontal {
+        // |d_y| ≥ |d_xz|, compared squared (|d| is finite, so the squares
+        // are too).
+        let times = if q.d.y * q.d.y >= q.radius.0 {
             [Some(t_height), None]
         } else {
             let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
@@ -531,29 +565,27 @@ impl SpanTable {
         iterations: &mut u32,
     ) -> Option<LocalHit> {
         let (xs, ys) = self.coeffs(k);
-        let eval = |s: f64| {
-            let (x, dx) = eval_with_derivative(xs, s).unwrap_or((0.0, 0.0));
-            let (y, dy) = eval_with_derivative(ys, s).unwrap_or((0.0, 0.0));
-            (x, y, dx, dy)
-        };
+        // The profile is evaluated once per iterate and kept with it (the
+        // pole test and the hit reuse the best iterate's).
+        let eval = |s: f64| ProfilePoint::of_span(xs, ys, s);
         // The meridian-plane residual (ρ − |x|, p_y − y) at (s, t), with ρ,
         // the profile there and the ray point.
         let residual = |s: f64, t: f64| {
-            let (x, y, dx, dy) = eval(s);
+            let profile = eval(s);
             let p = q.o + q.d * t;
             let rho = (p.x * p.x + p.z * p.z).sqrt();
-            ((rho - x.abs(), p.y - y), rho, (x, dx, dy), p)
+            ((rho - profile.x.abs(), p.y - profile.y), rho, profile, p)
         };
         let (mut s, mut t) = (s0, t0);
         let (mut f, mut rho, mut profile, mut p) = residual(s, t);
         let mut r = (f.0 * f.0 + f.1 * f.1).sqrt();
-        let mut best = (r, s, t);
+        let mut best = (r, s, t, profile);
         for _ in 0..q.max_iterations {
             *iterations += 1;
             if r <= q.target || rho == 0.0 {
                 break;
             }
-            let (x, dx, dy) = profile;
+            let ProfilePoint { x, dx, dy, .. } = profile;
             let sigma = if x < 0.0 { -1.0 } else { 1.0 };
             // J = [[ρ′, −σx′], [d_y, −y′]] acting on (Δt, Δs).
             let drho = (p.x * q.d.x + p.z * q.d.z) / rho;
@@ -572,7 +604,7 @@ impl SpanTable {
             (f, rho, profile, p) = residual(s, t);
             let r_new = (f.0 * f.0 + f.1 * f.1).sqrt();
             if r_new < best.0 {
-                best = (r_new, s, t);
+                best = (r_new, s, t, profile);
             }
             if r_new >= r {
                 break;
@@ -583,17 +615,19 @@ impl SpanTable {
         // stalls a little off. There the hit is where the ray meets the axis
         // point (0, y(s*), 0) with x(s*) = 0: solve that directly and keep it
         // if it fits better.
-        if q.d.y != 0.0 && eval(best.1).0.abs() <= 1e-6 * self.scale {
-            if let Some(s_axis) = axis_root(xs, best.1) {
-                let (_, y, ..) = eval(s_axis);
+        let (_, s_best, _, at_best) = best;
+        if q.d.y != 0.0 && at_best.x.abs() <= 1e-6 * self.scale {
+            if let Some(s_axis) = axis_root(xs, s_best) {
+                let axis = eval(s_axis);
+                let y = axis.y;
                 let t_axis = (y - q.o.y) / q.d.y;
                 let r_axis = (q.o + q.d * t_axis - Vector3::new(0.0, y, 0.0)).norm();
                 if r_axis < best.0 {
-                    best = (r_axis, s_axis, t_axis);
+                    best = (r_axis, s_axis, t_axis, axis);
                 }
             }
         }
-        let (r, s, t) = best;
+        let (r, s, t, ProfilePoint { x, y, dx, dy }) = best;
         // A hit at a span join may converge a rounding error past the
         // span's end: the point is kept as Newton found it and only u is
         // moved into the profile's domain.
@@ -603,7 +637,6 @@ impl SpanTable {
             return None;
         }
         let (u0, u1) = self.spans[k].u;
-        let (x, y, dx, dy) = eval(s);
         // Trust the span's derivative for the normal only well away from
         // zero (relative to the span's size): near poles and cusps it is
         // dominated by rounding and the profile's exact limit is needed.
@@ -633,6 +666,7 @@ impl SpanTable {
             t,
             u,
             theta,
+            sin_cos: (sn, cs),
             point: Point3::new(x * cs, y, -x * sn),
             tangent,
             x,

@@ -142,7 +142,7 @@ impl<C: Curve<2>> Revolution<C> {
                 mesh.positions
                     .push(self.to_world() * Point3::new(x * cs, y, -x * sn));
                 let n = tangent
-                    .and_then(|t| profile_normal(x, t, arriving, theta))
+                    .and_then(|t| profile_normal(x, t, arriving, (sn, cs)))
                     .map(|n| Unit::new_unchecked(self.to_world().rotation * n.into_inner()))
                     // No tangent plane (an apex): the axis direction is the
                     // best vertex normal there.

@@ -100,7 +100,7 @@ impl<C: Curve<2>> Revolution<C> {
         report.residual = Some(local.residual);
         let at_end = local.u >= self.profile.domain().1;
         let normal_local = match local.tangent {
-            Some(t) => profile_normal(local.x, t, at_end, local.theta),
+            Some(t) => profile_normal(local.x, t, at_end, local.sin_cos),
             None => self.normal_local(local.u, local.theta),
         }
         // No tangent plane (a cone's apex): face the ray.
@@ -186,19 +186,19 @@ impl<C: Curve<2>> Revolution<C> {
     pub fn normal_local(&self, u: f64, theta: f64) -> Option<Unit<Vector3<f64>>> {
         let x = self.profile.eval(u).x;
         let at_end = u >= self.profile.domain().1;
-        profile_normal(x, self.profile.tangent(u)?, at_end, theta)
+        profile_normal(x, self.profile.tangent(u)?, at_end, theta.sin_cos())
     }
 }
 
-/// The local unit normal at angle `theta` of the profile point with radius
-/// coordinate `x` and unit tangent `tangent` (see [`Revolution`]'s edge
-/// rules); `at_end` says the point is where the profile ends, so that on the
-/// axis the profile arrives rather than leaves.
+/// The local unit normal at the angle `θ`, given as `(sin θ, cos θ)`, of the
+/// profile point with radius coordinate `x` and unit tangent `tangent` (see
+/// [`Revolution`]'s edge rules); `at_end` says the point is where the profile
+/// ends, so that on the axis the profile arrives rather than leaves.
 pub(crate) fn profile_normal(
     x: f64,
     tangent: Unit<Vector2<f64>>,
     at_end: bool,
-    theta: f64,
+    (s, c): (f64, f64),
 ) -> Option<Unit<Vector3<f64>>> {
     let (dx, dy) = (tangent.x, tangent.y);
     let side = if x != 0.0 {
@@ -214,7 +214,6 @@ pub(crate) fn profile_normal(
         // −sign(x′) at its end.
         if at_end { -dx.signum() } else { dx.signum() }
     };
-    let (s, c) = theta.sin_cos();
     Unit::try_new(Vector3::new(-dy * c, dx, dy * s) * side, 0.0)
 }
 
