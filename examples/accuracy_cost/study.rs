@@ -248,7 +248,7 @@ struct Exact<C> {
 
 impl<C: Curve<2>> Method for Exact<C> {
     fn series(&self) -> String {
-        "exact (revolve)".to_string()
+        "revolve exact".to_string()
     }
     fn knob(&self) -> String {
         format!("tol {:.0e}", self.tolerance)
@@ -266,7 +266,7 @@ struct Newton<C> {
 
 impl<C: Curve<2>> Method for Newton<C> {
     fn series(&self) -> String {
-        format!("Newton (revolve), depth {}", self.solver.depth())
+        format!("revolve Newton, depth {}", self.solver.depth())
     }
     fn knob(&self) -> String {
         format!("depth {}, tol {:.0e}", self.solver.depth(), self.tolerance)
