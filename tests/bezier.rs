@@ -425,7 +425,11 @@ fn flattened_parabola_is_tight() {
     assert_eq!(f.samples.len(), 33);
     let exact = (1.0_f64 / 32.0).powi(2);
     assert!(f.bound >= exact && f.bound <= 1e-3, "bound {}", f.bound);
-    assert!(f.bound - exact < 1e-12, "bound {} vs deviation {exact}", f.bound);
+    assert!(
+        f.bound - exact < 1e-12,
+        "bound {} vs deviation {exact}",
+        f.bound
+    );
 }
 
 #[test]
