@@ -219,9 +219,8 @@ impl<S: Turned> Method for CourseNewton<S> {
         for _ in 0..self.attempts {
             let u0 = self.rng.unit();
             let v0 = wrap_turn(turn + self.rng.range(-0.1, 0.1));
-            if let Some(t) = self.attempt(ray, Vector3::new(t0, u0, v0), t_min, t_max)
-                && best.is_none_or(|b| t < b)
-            {
+            let found = self.attempt(ray, Vector3::new(t0, u0, v0), t_min, t_max);
+            if let Some(t) = found.filter(|&t| best.is_none_or(|b| t < b)) {
                 best = Some(t);
             }
         }
