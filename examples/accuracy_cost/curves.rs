@@ -323,12 +323,7 @@ fn median_seconds<R>(budget: &Budget, mut f: impl FnMut() -> R) -> f64 {
         })
         .collect();
     times.sort_by(f64::total_cmp);
-    let m = times.len() / 2;
-    if times.len() % 2 == 1 {
-        times[m]
-    } else {
-        0.5 * (times[m - 1] + times[m])
-    }
+    crate::study::median_sorted(&times)
 }
 
 /// The tolerances the library accepts for this curve, coarse to fine.

@@ -91,16 +91,25 @@ fn shape<C: Curve<2> + Clone>(
 /// The plot series of one shape's rows: one per method series, points
 /// `(rays/s, error)` in the rows' order, errors floored at [`ERROR_FLOOR`].
 pub fn series_of(rows: &[Row], shape: &str, error: impl Fn(&Row) -> f64) -> Vec<Series> {
-    let mut out: Vec<Series> = Vec::new();
-    for row in rows.iter().filter(|r| r.shape == shape) {
+    grouped(rows.iter().filter(|r| r.shape == shape).map(|row| {
+        // The course method's settings are not an ordered sweep.
+        let connect = !row.series.starts_with("course");
         let point = (row.rays_per_second, error(row).max(ERROR_FLOOR));
-        match out.iter_mut().find(|s| s.name == row.series) {
+        (row.series.clone(), point, connect)
+    }))
+}
+
+/// Points `(series name, point, connect)` gathered into one series per
+/// name, in order of first appearance, points in the order given.
+fn grouped(points: impl Iterator<Item = (String, (f64, f64), bool)>) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for (name, point, connect) in points {
+        match out.iter_mut().find(|s| s.name == name) {
             Some(s) => s.points.push(point),
             None => out.push(Series {
-                name: row.series.clone(),
+                name,
                 points: vec![point],
-                // The course method's settings are not an ordered sweep.
-                connect: !row.series.starts_with("course"),
+                connect,
             }),
         }
     }
@@ -161,20 +170,10 @@ pub fn write(dir: &Path, results: &Results, plan: &Plan) -> std::io::Result<Vec<
 
 /// One series per curve and method: `(samples, measured deviation)`.
 fn curve_series(points: &[CurvePoint]) -> Vec<Series> {
-    let mut out: Vec<Series> = Vec::new();
-    for p in points {
+    grouped(points.iter().map(|p| {
         let name = format!("{}, {}", p.curve, p.method);
-        let point = (p.samples as f64, p.measured.max(ERROR_FLOOR));
-        match out.iter_mut().find(|s| s.name == name) {
-            Some(s) => s.points.push(point),
-            None => out.push(Series {
-                name,
-                points: vec![point],
-                connect: true,
-            }),
-        }
-    }
-    out
+        (name, (p.samples as f64, p.measured.max(ERROR_FLOOR)), true)
+    }))
 }
 
 /// The whole report as markdown.

@@ -210,7 +210,7 @@ pub fn error_stats(cases: &Cases, answers: &[Option<f64>]) -> ErrorStats {
 }
 
 /// The median of sorted values (0 for none).
-fn median_sorted(v: &[f64]) -> f64 {
+pub fn median_sorted(v: &[f64]) -> f64 {
     match v.len() {
         0 => 0.0,
         n if n % 2 == 1 => v[n / 2],

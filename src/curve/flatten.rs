@@ -65,6 +65,18 @@ struct Accumulator<'c, C, const D: usize> {
     samples: Vec<CurveSample<D>>,
 }
 
+impl<C: Curve<D>, const D: usize> Accumulator<'_, C, D> {
+    /// Appends the curve's sample at `t` (point and derivative).
+    fn sample(&mut self, t: f64) {
+        let (point, derivative) = self.curve.eval_with_derivative(t);
+        self.samples.push(CurveSample {
+            t,
+            point,
+            derivative,
+        });
+    }
+}
+
 /// Flattens `curve`, given as a sequence of Bézier pieces (control points and
 /// the parameter interval each covers), to `tolerance`.
 pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
@@ -116,13 +128,7 @@ pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
             });
         }
     }
-    let t_end = curve.domain().1;
-    let (point, derivative) = curve.eval_with_derivative(t_end);
-    acc.samples.push(CurveSample {
-        t: t_end,
-        point,
-        derivative,
-    });
+    acc.sample(curve.domain().1);
     Ok(Flattening {
         samples: acc.samples,
         bound: acc.bound,
@@ -147,28 +153,15 @@ fn refine<C: Curve<D>, const D: usize>(
     let bound = hull_to_chord_distance(c) + rounding;
     if bound <= acc.tolerance {
         acc.bound = acc.bound.max(bound);
-        let (point, derivative) = acc.curve.eval_with_derivative(a);
-        acc.samples.push(CurveSample {
-            t: a,
-            point,
-            derivative,
-        });
+        acc.sample(a);
         return Ok(());
     }
-    if let Some(parts) = uniform_parts(c, acc.tolerance - rounding) {
+    if let Some((parts, deviation)) = uniform_parts(c, acc.tolerance - rounding) {
         // Equal parts, each certified by the second-derivative bound.
-        let second = second_derivative_bound(c);
         for k in 0..parts {
-            let t = a + (b - a) * (k as f64 / parts as f64);
-            let (point, derivative) = acc.curve.eval_with_derivative(t);
-            acc.samples.push(CurveSample {
-                t,
-                point,
-                derivative,
-            });
+            acc.sample(a + (b - a) * (k as f64 / parts as f64));
         }
-        let part = 1.0 / parts as f64;
-        acc.bound = acc.bound.max(second * part * part / 8.0 + rounding);
+        acc.bound = acc.bound.max(deviation + rounding);
         return Ok(());
     }
     if depth >= MAX_DEPTH {
@@ -193,22 +186,24 @@ fn refine<C: Curve<D>, const D: usize>(
 const MAX_UNIFORM_PARTS: usize = 12;
 
 /// How many equal parameter parts of the piece `c` certainly deviate from
-/// their chords by at most `tolerance`, if at most [`MAX_UNIFORM_PARTS`].
+/// their chords by at most `tolerance`, if at most [`MAX_UNIFORM_PARTS`],
+/// and the deviation bound they achieve.
 ///
 /// On a part of width `w` (in the piece's parameter `s ∈ [0, 1]`) the curve
 /// minus its chord's linear interpolant is `e(s) = −∫ G(s, σ) C″(σ) dσ` with
 /// the Green's function `G ≥ 0`, `∫ G = (s − s₀)(s₁ − s)/2 ≤ w²/8`, so
 /// `|e| ≤ w²/8 · max|C″|` ([`second_derivative_bound`]); the chord point
 /// `L(s)` is on the segment, so this bounds the distance to it too.
-fn uniform_parts<const D: usize>(c: &[SVector<f64, D>], tolerance: f64) -> Option<usize> {
+fn uniform_parts<const D: usize>(c: &[SVector<f64, D>], tolerance: f64) -> Option<(usize, f64)> {
     if c.len() < 3 || tolerance.is_nan() || tolerance <= 0.0 {
         return None;
     }
-    let parts = (second_derivative_bound(c) / (8.0 * tolerance))
-        .sqrt()
-        .ceil();
-    (parts.is_finite() && parts >= 1.0 && parts <= MAX_UNIFORM_PARTS as f64)
-        .then_some(parts as usize)
+    let second = second_derivative_bound(c);
+    let parts = (second / (8.0 * tolerance)).sqrt().ceil();
+    if !(parts.is_finite() && parts >= 1.0 && parts <= MAX_UNIFORM_PARTS as f64) {
+        return None;
+    }
+    Some((parts as usize, second / (8.0 * parts * parts)))
 }
 
 /// `max |C″(s)|` over the piece `c` (parameter `s ∈ [0, 1]`), bounded by
