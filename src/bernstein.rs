@@ -194,6 +194,52 @@ fn both<T: Coefficient, const N: usize>(a: [T; N], t: f64) -> (T, T) {
     (lerp(r[0], r[1], t), (r[1] - r[0]) * (N - 1) as f64)
 }
 
+/// Scalar Bernstein coefficients as the root search and the exact
+/// intersector evaluate them: a fixed-size array (`[f64; N]`, the cascade
+/// unrolled for that `N`) or a slice (dispatched by length at each call).
+/// Both give exactly the values of [`eval`] and [`eval_with_derivative`].
+pub(crate) trait Polynomial {
+    /// The coefficients.
+    fn coeffs(&self) -> &[f64];
+    /// The value at `t` (0 for no coefficients).
+    fn value(&self, t: f64) -> f64;
+    /// The value and first derivative at `t` (`None` for no coefficients).
+    fn value_and_slope(&self, t: f64) -> Option<(f64, f64)>;
+}
+
+impl<const N: usize> Polynomial for [f64; N] {
+    #[inline(always)]
+    fn coeffs(&self) -> &[f64] {
+        self
+    }
+    #[inline(always)]
+    fn value(&self, t: f64) -> f64 {
+        if N == 0 {
+            return 0.0;
+        }
+        cascade(*self, t, N - 1)[0]
+    }
+    #[inline(always)]
+    fn value_and_slope(&self, t: f64) -> Option<(f64, f64)> {
+        (N > 0).then(|| both(*self, t))
+    }
+}
+
+impl Polynomial for [f64] {
+    #[inline(always)]
+    fn coeffs(&self) -> &[f64] {
+        self
+    }
+    #[inline]
+    fn value(&self, t: f64) -> f64 {
+        eval(self, t).unwrap_or(0.0)
+    }
+    #[inline]
+    fn value_and_slope(&self, t: f64) -> Option<(f64, f64)> {
+        eval_with_derivative(self, t)
+    }
+}
+
 /// The values and first derivatives at `t` of two polynomials of the same
 /// degree, `[(a(t), a′(t)), (b(t), b′(t))]`: the two coordinates of a planar
 /// Bézier curve stored apart. The results are exactly those of two calls of

@@ -36,7 +36,7 @@
 //! root can be reported that exact arithmetic would refute (the caller
 //! verifies), but none is missed.
 
-use crate::bernstein::{eval, eval_with_derivative, subdivide};
+use crate::bernstein::{Polynomial, eval_with_derivative, subdivide};
 use crate::scratch::with_scratch;
 
 /// Deepest subdivision: pieces of width `2⁻⁴⁸` (about `3.6e-15`) are not split.
@@ -145,6 +145,70 @@ pub fn find_roots_to(coeffs: &[f64], error: f64, width: f64, mut found: impl FnM
     }
 }
 
+/// The roots in `[0, 1]` when the search's first, cheapest rules decide
+/// them, exactly as [`find_roots_to`] would report them: every coefficient
+/// certainly of one sign ([`QuickRoots::None`]), or one certain sign change
+/// and its root confirmed ([`QuickRoots::One`]). Anything else is
+/// [`QuickRoots::Search`]: call [`find_roots_to`].
+///
+/// For callers on a hot path: with coefficients in a fixed-size array the
+/// whole decision and refinement run unrolled, without the search's
+/// recursion and callbacks.
+#[inline(always)]
+pub(crate) fn quick_roots<P: Polynomial + ?Sized>(c: &P, error: f64, width: f64) -> QuickRoots {
+    let coeffs = c.coeffs();
+    if coeffs.is_empty() {
+        return QuickRoots::None;
+    }
+    // The error of the search's first level (depth 0).
+    let e = error.max(0.0) + 2.0 * f64::EPSILON * magnitude(coeffs);
+    match first_look(c, 0.0, 1.0, e, width) {
+        Look::NoRoot => QuickRoots::None,
+        Look::One(u) => QuickRoots::One(u),
+        Look::Flat | Look::Undecided => QuickRoots::Search,
+    }
+}
+
+/// What [`quick_roots`] decided.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum QuickRoots {
+    /// No root in `[0, 1]`.
+    None,
+    /// Exactly one root, refined.
+    One(f64),
+    /// Not decided by the first rules.
+    Search,
+}
+
+/// What the cheap rules say about one piece.
+enum Look {
+    /// Every coefficient certainly of one sign: no root.
+    NoRoot,
+    /// Every coefficient within the error of zero.
+    Flat,
+    /// One certain sign change: exactly one root, here (confirmed).
+    One(f64),
+    /// None of these.
+    Undecided,
+}
+
+/// The cheap rules on the piece `c` of `[a, b]` at coefficient error `e`:
+/// the convex-hull test and, for one certain sign change (Descartes' rule),
+/// the refined root ([`refine`] to `width`; a root it cannot confirm leaves
+/// the piece undecided).
+#[inline(always)]
+fn first_look<P: Polynomial + ?Sized>(c: &P, a: f64, b: f64, e: f64, width: f64) -> Look {
+    let coeffs = c.coeffs();
+    match classify(coeffs, e) {
+        Signs::Definite => Look::NoRoot,
+        Signs::Zero => Look::Flat,
+        Signs::Mixed if one_sign_change(coeffs, e) => {
+            refine(c, a, b, width).map_or(Look::Undecided, Look::One)
+        }
+        Signs::Mixed => Look::Undecided,
+    }
+}
+
 /// The fixed parameters of one search.
 struct Search {
     /// Absolute error of the input coefficients.
@@ -247,19 +311,17 @@ impl Search {
     /// returns `true` when it must be split.
     fn settle(&self, c: &[f64], a: f64, b: f64, depth: u32, found: &mut dyn FnMut(Root)) -> bool {
         let e = self.error + self.growth * f64::from(depth + 1);
-        match classify(c, e) {
-            Signs::Definite => return false,
-            Signs::Zero => {
+        match first_look(c, a, b, e, self.width) {
+            Look::NoRoot => return false,
+            Look::Flat => {
                 found(Root::Flat { from: a, to: b });
                 return false;
             }
-            Signs::Mixed => {}
-        }
-        if one_sign_change(c, e) {
-            if let Ok(u) = refine(c, a, b, self.width) {
+            Look::One(u) => {
                 found(Root::At(u));
                 return false;
             }
+            Look::Undecided => {}
         }
         let n = c.len() - 1;
         if self.monotonic(c, e) {
@@ -440,20 +502,30 @@ impl Search {
 /// signs could not be confirmed: near a touch of zero within the rounding
 /// bound, the one root cannot be told from the noise (the caller then
 /// subdivides instead).
-fn refine(c: &[f64], a: f64, b: f64, done: f64) -> Result<f64, f64> {
-    refine_from(c, a, b, done, polygon_crossing(c))
+#[inline]
+fn refine<P: Polynomial + ?Sized>(c: &P, a: f64, b: f64, done: f64) -> Result<f64, f64> {
+    refine_from(c, a, b, done, polygon_crossing(c.coeffs()))
 }
 
 /// [`refine`] from the local start `s` (in `[0, 1]`).
-fn refine_from(c: &[f64], a: f64, b: f64, done: f64, s: f64) -> Result<f64, f64> {
-    let rising = c[c.len() - 1] > c[0];
+#[inline]
+fn refine_from<P: Polynomial + ?Sized>(
+    c: &P,
+    a: f64,
+    b: f64,
+    done: f64,
+    s: f64,
+) -> Result<f64, f64> {
+    let coeffs = c.coeffs();
+    let rising = coeffs[coeffs.len() - 1] > coeffs[0];
     refine_within(c, a, b, done, (0.0, 1.0), rising, s)
 }
 
 /// [`refine`] on the local bracket `bracket` (whose ends certainly have
 /// opposite signs, rising or falling through the one root) from `s`.
-fn refine_within(
-    c: &[f64],
+#[inline]
+fn refine_within<P: Polynomial + ?Sized>(
+    c: &P,
     a: f64,
     b: f64,
     done: f64,
@@ -461,11 +533,11 @@ fn refine_within(
     rising: bool,
     mut s: f64,
 ) -> Result<f64, f64> {
-    let n = c.len() - 1;
+    let n = c.coeffs().len() - 1;
     let to_u = |s: f64| a + (b - a) * s;
     // f·sign rises through the root.
     let sign = if rising { 1.0 } else { -1.0 };
-    let scale = magnitude(c);
+    let scale = magnitude(c.coeffs());
     let noise = 4.0 * n.max(1) as f64 * f64::EPSILON * scale;
     // Which side of the root `x` certainly is: −1 before, 1 after, 0 unknown.
     let side = |f: f64| {
@@ -485,7 +557,7 @@ fn refine_within(
         .max(done / (b - a));
     let mut checkpoint = hi - lo;
     for i in 1..=128 {
-        let Some((f, df)) = eval_with_derivative(c, s) else {
+        let Some((f, df)) = c.value_and_slope(s) else {
             break;
         };
         match side(f) {
@@ -501,7 +573,7 @@ fn refine_within(
                 slope: df,
                 noise,
                 derivative_noise,
-                curvature: curvature_bound(c, scale),
+                curvature: curvature_bound(c.coeffs(), scale),
             };
             if taylor
                 .newton_error(s, step, (lo, hi))
@@ -523,11 +595,7 @@ fn refine_within(
                 .min(1.0 / (1u32 << 20) as f64);
             let (l, r) = ((center - d).max(lo), (center + d).min(hi));
             let at = |x: f64, end: f64, known: i32| {
-                if x == end {
-                    known
-                } else {
-                    eval(c, x).map_or(0, side)
-                }
+                if x == end { known } else { side(c.value(x)) }
             };
             match (at(l, lo, -1), at(r, hi, 1)) {
                 (-1, 1) => return Ok(to_u(center)),
@@ -805,7 +873,7 @@ mod tests {
                 let s0 = 0.69 + 0.02 * f64::from(k) / 1000.0;
                 // Confirmed at 0.2, or (only where δ is below the rounding
                 // of evaluation) declined so that the caller subdivides.
-                match refine_from(&p, 0.0, 1.0, 0.0, s0) {
+                match refine_from(p.as_slice(), 0.0, 1.0, 0.0, s0) {
                     Ok(u) => assert!((u - 0.2).abs() < 1e-12, "δ = {delta}, from {s0}: {u}"),
                     Err(u) => assert!(delta < 1e-15, "δ = {delta}, from {s0}: declined at {u}"),
                 }
@@ -884,7 +952,7 @@ mod tests {
         for k in 0..=100 {
             let s0 = 0.65 + 0.1 * f64::from(k) / 100.0;
             // (Lifted by 1e-9, the root moves by 1e-9 / f′(0.2) = 4e-9.)
-            let u = refine_from(&p, 0.0, 1.0, 0.0, s0).expect("confirmed");
+            let u = refine_from(p.as_slice(), 0.0, 1.0, 0.0, s0).expect("confirmed");
             assert!((u - 0.2).abs() < 1e-8, "from {s0}: {u}");
         }
     }
@@ -937,5 +1005,59 @@ mod tests {
                     .all(|&(lo, hi)| (lo - 0.3).abs() < 1e-2 && (hi - 0.3).abs() < 1e-2)
             );
         }
+    }
+
+    /// `quick_roots` decides only what the full search reports, and reports
+    /// the same root to the bit, on fixed-size arrays and on slices alike;
+    /// it decides most one-root and no-root sextics (else the fast path
+    /// would be dead code).
+    #[test]
+    fn quick_roots_agrees_with_the_search() {
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut none, mut one, mut search) = (0, 0, 0);
+        for case in 0..3000 {
+            // Six roots, zero to three of them in [0, 1]; a scale; for some
+            // cases an error bound on the coefficients.
+            let inside = case % 4;
+            let roots: Vec<f64> = (0..6)
+                .map(|i| {
+                    if i < inside {
+                        unit()
+                    } else if unit() < 0.5 {
+                        -0.05 - 2.0 * unit()
+                    } else {
+                        1.05 + 2.0 * unit()
+                    }
+                })
+                .collect();
+            let scale = 10f64.powf(6.0 * unit() - 3.0);
+            let c: Vec<f64> = from_roots(&roots).iter().map(|x| x * scale).collect();
+            let error = if case % 3 == 0 { 1e-12 * scale } else { 0.0 };
+            let arr: [f64; 7] = c.clone().try_into().expect("seven coefficients");
+            let quick = quick_roots(&arr, error, 0.0);
+            assert_eq!(quick, quick_roots(c.as_slice(), error, 0.0), "{c:?}");
+            let full = roots_of(&c, error);
+            match quick {
+                QuickRoots::None => {
+                    assert!(full.is_empty(), "{c:?}: {full:?}");
+                    none += 1;
+                }
+                QuickRoots::One(u) => {
+                    assert_eq!(full, vec![Root::At(u)], "{c:?}");
+                    one += 1;
+                }
+                QuickRoots::Search => search += 1,
+            }
+        }
+        assert!(
+            none > 500 && one > 500,
+            "{none} none, {one} one, {search} searched"
+        );
     }
 }

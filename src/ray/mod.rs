@@ -7,6 +7,7 @@
 
 pub mod newton;
 pub(crate) mod revolution;
+mod span_form;
 
 pub use revolution::ExactReport;
 

@@ -23,8 +23,9 @@
 //! where the ray enters their bounding cylinder; the search stops once the
 //! best hit is nearer than the next span.
 
-use crate::bernstein::{binomial, eval_pair_with_derivative, eval_with_derivative};
-use crate::roots::{Root, find_roots_to};
+use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
+use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
+use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::scratch::with_scratch;
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
@@ -168,26 +169,6 @@ struct Span {
     r: (f64, f64),
 }
 
-/// A span's profile point `(x, y)` at one parameter and its derivative
-/// `(x′, y′)` there.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct ProfilePoint {
-    x: f64,
-    y: f64,
-    dx: f64,
-    dy: f64,
-}
-
-impl ProfilePoint {
-    /// The point of the span with coefficients `xs`, `ys` at `s` (both
-    /// coordinates in one de Casteljau pass); zeros for an empty span.
-    #[inline]
-    fn of_span(xs: &[f64], ys: &[f64], s: f64) -> Self {
-        let [(x, dx), (y, dy)] = eval_pair_with_derivative(xs, ys, s).unwrap_or([(0.0, 0.0); 2]);
-        ProfilePoint { x, y, dx, dy }
-    }
-}
-
 /// A hit in the local frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct LocalHit {
@@ -228,9 +209,9 @@ pub struct ExactReport {
 }
 
 /// A ray in the local frame and the interval searched.
-struct Query {
-    o: Vector3<f64>,
-    d: Vector3<f64>,
+pub(super) struct Query {
+    pub(super) o: Vector3<f64>,
+    pub(super) d: Vector3<f64>,
     /// Position error accepted for a hit.
     accept: f64,
     /// Residual at which Newton stops.
@@ -427,10 +408,42 @@ impl SpanTable {
         report: &mut ExactReport,
     ) {
         report.spans_solved += 1;
+        let (xs, ys) = self.coeffs(k);
+        // Degrees up to 5 run on exactly sized arrays.
+        macro_rules! fixed {
+            ($($w:literal),*) => {
+                match xs.len() {
+                    $($w => {
+                        if let (Ok(xs), Ok(ys)) = (<&[f64; $w]>::try_from(xs), <&[f64; $w]>::try_from(ys)) {
+                            let span = Fixed { xs, ys };
+                            return self.hits_on(k, span, q, t_floor, t_best, best, report);
+                        }
+                    })*
+                    _ => {}
+                }
+            };
+        }
+        fixed!(2, 3, 4, 5, 6);
+        self.hits_on(k, Slices { xs, ys }, q, t_floor, t_best, best, report);
+    }
+
+    /// [`span_hits`](Self::span_hits) on the span's Bézier form `span`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn hits_on<P: SpanForm>(
+        &self,
+        k: usize,
+        span: P,
+        q: &Query,
+        t_floor: f64,
+        t_best: &mut f64,
+        best: &mut Option<LocalHit>,
+        report: &mut ExactReport,
+    ) {
         let mut cands = Candidates::default();
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y.
-            let (_, ys) = self.coeffs(k);
+            let ys = span.ys();
             with_scratch(ys.len(), 0.0, |g| {
                 let mut err = 0.0_f64;
                 for (gi, &y) in g.iter_mut().zip(ys) {
@@ -440,23 +453,33 @@ impl SpanTable {
                 find_roots_to(g, err, CANDIDATE_WIDTH, |root| {
                     report.roots += 1;
                     for s in root_samples(root) {
-                        for t in self.radius_times(k, q, s) {
+                        for t in circle_times(q, span.x(s)).into_iter().flatten() {
                             cands.push(t, s);
                         }
                     }
                 });
             });
         } else {
-            with_scratch(2 * self.degree + 1, 0.0, |f| {
-                let err = self.span_polynomial(k, q, f);
-                find_roots_to(f, err, CANDIDATE_WIDTH, |root| {
-                    report.roots += 1;
-                    for s in root_samples(root) {
-                        for t in self.candidate_times(k, q, s) {
+            span.with_hit_polynomial(q, &self.weights, |f, err| {
+                match quick_roots(f, err, CANDIDATE_WIDTH) {
+                    QuickRoots::None => {}
+                    QuickRoots::One(s) => {
+                        report.roots += 1;
+                        for t in candidate_times(span, q, s) {
                             cands.push(t, s);
                         }
                     }
-                });
+                    QuickRoots::Search => {
+                        find_roots_to(f.coeffs(), err, CANDIDATE_WIDTH, |root| {
+                            report.roots += 1;
+                            for s in root_samples(root) {
+                                for t in candidate_times(span, q, s) {
+                                    cands.push(t, s);
+                                }
+                            }
+                        });
+                    }
+                }
             });
         }
         // A guess can be off by the root's uncertainty: allow a margin of
@@ -471,78 +494,13 @@ impl SpanTable {
                 continue;
             }
             report.candidates += 1;
-            if let Some(hit) = self.polish(k, q, s, t, &mut report.iterations) {
+            if let Some(hit) = self.polish(k, span, q, s, t, &mut report.iterations) {
                 if hit.t > t_floor && hit.t < *t_best {
                     *t_best = hit.t;
                     *best = Some(hit);
                 }
             }
         }
-    }
-
-    /// Writes the `2n + 1` Bernstein coefficients of `f` for span `k` into
-    /// `f` and returns a bound on their rounding error.
-    fn span_polynomial(&self, k: usize, q: &Query, f: &mut [f64]) -> f64 {
-        // Degrees up to 5 run on exactly sized arrays (unrolled loops).
-        macro_rules! fixed {
-            ($($w:literal),*) => {
-                match self.degree + 1 {
-                    $($w => {
-                        let (xs, ys) = self.coeffs(k);
-                        if let (Ok(xs), Ok(ys)) = (<&[f64; $w]>::try_from(xs), <&[f64; $w]>::try_from(ys)) {
-                            return products::<$w>(xs, ys, &self.weights, q, f);
-                        }
-                    })*
-                    _ => {}
-                }
-            };
-        }
-        fixed!(2, 3, 4, 5, 6);
-        let (xs, ys) = self.coeffs(k);
-        let w = xs.len();
-        with_scratch(3 * w, 0.0, |abc| {
-            let (a, rest) = abc.split_at_mut(w);
-            let (b, c) = rest.split_at_mut(w);
-            let m = span_terms(xs, ys, q, a, b, c);
-            products_into(a, b, c, m, &self.weights, f)
-        })
-    }
-
-    /// Ray parameters to try for the root `s` of span `k`: from the height
-    /// when the ray is steep, else from the radius (both crossings), nearest
-    /// the height's answer first.
-    fn candidate_times(&self, k: usize, q: &Query, s: f64) -> impl Iterator<Item = f64> {
-        let (xs, ys) = self.coeffs(k);
-        let y = crate::bernstein::eval(ys, s).unwrap_or(0.0);
-        let t_height = (y - q.o.y) / q.d.y;
-        // |d_y| ≥ |d_xz|, compared squared (|d| is finite, so the squares
-        // are too).
-        let times = if q.d.y * q.d.y >= q.radius.0 {
-            [Some(t_height), None]
-        } else {
-            let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
-            let [a, b] = circle_times(q, x);
-            // Keep the radius solution that agrees with the height.
-            match (a, b) {
-                (Some(a), Some(b)) => {
-                    if (a - t_height).abs() <= (b - t_height).abs() {
-                        [Some(a), Some(b)]
-                    } else {
-                        [Some(b), Some(a)]
-                    }
-                }
-                _ => [Some(t_height), None],
-            }
-        };
-        times.into_iter().flatten()
-    }
-
-    /// For a ray perpendicular to the axis at the root `s` of `y(s) = o_y`:
-    /// where the ray crosses the circle of radius `|x(s)|`.
-    fn radius_times(&self, k: usize, q: &Query, s: f64) -> impl Iterator<Item = f64> {
-        let (xs, _) = self.coeffs(k);
-        let x = crate::bernstein::eval(xs, s).unwrap_or(0.0);
-        circle_times(q, x).into_iter().flatten()
     }
 
     /// Newton's method on `o + t d − S(s, θ) = 0` for span `k` from `(s, t)`.
@@ -556,18 +514,19 @@ impl SpanTable {
     /// runs on the 2 × 2 system `ρ(t) = |x(s)|`, `p_y(t) = y(s)` in the
     /// meridian plane, with `ρ′ = (p_xz · d_xz)/ρ`. No trigonometry per
     /// iteration; `θ` is one `atan2` at the end.
-    fn polish(
+    #[inline(always)]
+    fn polish<P: SpanForm>(
         &self,
         k: usize,
+        span: P,
         q: &Query,
         s0: f64,
         t0: f64,
         iterations: &mut u32,
     ) -> Option<LocalHit> {
-        let (xs, ys) = self.coeffs(k);
         // The profile is evaluated once per iterate and kept with it (the
         // pole test and the hit reuse the best iterate's).
-        let eval = |s: f64| ProfilePoint::of_span(xs, ys, s);
+        let eval = |s: f64| span.point(s);
         // The meridian-plane residual (ρ − |x|, p_y − y) at (s, t), with ρ,
         // the profile there and the ray point.
         let residual = |s: f64, t: f64| {
@@ -617,7 +576,7 @@ impl SpanTable {
         // if it fits better.
         let (_, s_best, _, at_best) = best;
         if q.d.y != 0.0 && at_best.x.abs() <= 1e-6 * self.scale {
-            if let Some(s_axis) = axis_root(xs, s_best) {
+            if let Some(s_axis) = axis_root(span.xs(), s_best) {
                 let axis = eval(s_axis);
                 let y = axis.y;
                 let t_axis = (y - q.o.y) / q.d.y;
@@ -660,7 +619,11 @@ impl SpanTable {
         } else {
             (1.0, 0.0)
         };
-        let theta = sn.atan2(cs).rem_euclid(TAU) + 0.0; // no −0
+        // atan2 lies in [−π, π]: one turn added to the negative half is the
+        // Euclidean remainder (as `rem_euclid(TAU)`, which may round up to
+        // TAU itself), without its `fmod`.
+        let angle = sn.atan2(cs);
+        let theta = if angle < 0.0 { angle + TAU } else { angle } + 0.0; // no −0
         let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
         Some(LocalHit {
             t,
@@ -675,73 +638,32 @@ impl SpanTable {
     }
 }
 
-/// The Bernstein coefficients `aᵢ`, `bᵢ`, `cᵢ` of `A`, `B` and `d_y·x` for
-/// one span (see the module docs), and the largest magnitudes of the terms
-/// that form them (`|o_x d_y| + |h d_x|` and so on: with cancellation the
-/// rounding error is relative to those, not to the result).
+/// Ray parameters to try for the root `s` of `span`: from the height when
+/// the ray is steep, else from the radius (both crossings), nearest the
+/// height's answer first.
 #[inline(always)]
-fn span_terms(
-    xs: &[f64],
-    ys: &[f64],
-    q: &Query,
-    a: &mut [f64],
-    b: &mut [f64],
-    c: &mut [f64],
-) -> [f64; 3] {
-    let (o, d) = (q.o, q.d);
-    let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
-    let mut m = [0.0_f64; 3];
-    for i in 0..xs.len() {
-        let h = ys[i] - o.y;
-        a[i] = oxdy + h * d.x;
-        b[i] = ozdy + h * d.z;
-        c[i] = d.y * xs[i];
-        m[0] = m[0].max(oxdy.abs() + (h * d.x).abs());
-        m[1] = m[1].max(ozdy.abs() + (h * d.z).abs());
-        m[2] = m[2].max(c[i].abs());
-    }
-    m
-}
-
-/// `f_k = Σ_{i+j=k} wᵢⱼ (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ)` into `f` (length `2n + 1`)
-/// and the bound on its rounding error.
-///
-/// `Σ_{i+j=k} wᵢⱼ = 1` (Vandermonde), so every coefficient is a weighted mean
-/// of terms bounded by `m₀² + m₁² + m₂²` (`m` from [`span_terms`]). The
-/// inputs carry up to 3ε error relative to `m`, products and the three
-/// terms add 3ε, the `n + 1` sums `(n + 1)ε`: `(n + 8)ε` covers them.
-#[inline(always)]
-fn products_into(
-    a: &[f64],
-    b: &[f64],
-    c: &[f64],
-    [ma, mb, mc]: [f64; 3],
-    weights: &[f64],
-    f: &mut [f64],
-) -> f64 {
-    let w = a.len();
-    f.fill(0.0);
-    for i in 0..w {
-        f[2 * i] += weights[i * w + i] * (a[i] * a[i] + b[i] * b[i] - c[i] * c[i]);
-        for j in i + 1..w {
-            f[i + j] += 2.0 * weights[i * w + j] * (a[i] * a[j] + b[i] * b[j] - c[i] * c[j]);
+fn candidate_times<P: SpanForm>(span: P, q: &Query, s: f64) -> impl Iterator<Item = f64> {
+    let y = span.y(s);
+    let t_height = (y - q.o.y) / q.d.y;
+    // |d_y| ≥ |d_xz|, compared squared (|d| is finite, so the squares
+    // are too).
+    let times = if q.d.y * q.d.y >= q.radius.0 {
+        [Some(t_height), None]
+    } else {
+        let [a, b] = circle_times(q, span.x(s));
+        // Keep the radius solution that agrees with the height.
+        match (a, b) {
+            (Some(a), Some(b)) => {
+                if (a - t_height).abs() <= (b - t_height).abs() {
+                    [Some(a), Some(b)]
+                } else {
+                    [Some(b), Some(a)]
+                }
+            }
+            _ => [Some(t_height), None],
         }
-    }
-    (w + 7) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
-}
-
-/// [`span_terms`] and [`products_into`] for spans of `W` coefficients.
-#[inline(always)]
-fn products<const W: usize>(
-    xs: &[f64; W],
-    ys: &[f64; W],
-    weights: &[f64],
-    q: &Query,
-    f: &mut [f64],
-) -> f64 {
-    let (mut a, mut b, mut c) = ([0.0; W], [0.0; W], [0.0; W]);
-    let m = span_terms(xs, ys, q, &mut a, &mut b, &mut c);
-    products_into(&a, &b, &c, m, &weights[..W * W], &mut f[..2 * W - 1])
+    };
+    times.into_iter().flatten()
 }
 
 /// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's

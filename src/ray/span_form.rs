@@ -1,0 +1,218 @@
+//! One profile span in Bézier form, as the exact intersector evaluates it.
+//!
+//! A span is `(x(s), y(s))`, `s ∈ [0, 1]`, with Bernstein coefficients `xs`
+//! and `ys`. Spans of degree ≤ 5 come as fixed-size arrays ([`Fixed`]): the
+//! hit polynomial, its root search and every evaluation are then compiled for
+//! that size (unrolled, in registers, no dispatch per call). Higher degrees
+//! use slices ([`Slices`]). Both compute the same numbers.
+
+use super::revolution::Query;
+use crate::bernstein::{Polynomial, eval_pair_with_derivative};
+use crate::scratch::with_scratch;
+
+/// A span's point `(x, y)` at one parameter and its derivative `(x′, y′)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ProfilePoint {
+    pub(super) x: f64,
+    pub(super) y: f64,
+    pub(super) dx: f64,
+    pub(super) dy: f64,
+}
+
+/// A span's Bernstein coefficients and what the intersector evaluates on
+/// them.
+pub(super) trait SpanForm: Copy {
+    /// The coefficients of the hit polynomial `f` (degree `2n`).
+    type Poly: Polynomial + ?Sized;
+
+    /// The `x` coefficients.
+    fn xs(&self) -> &[f64];
+
+    /// The `y` coefficients.
+    fn ys(&self) -> &[f64];
+
+    /// `x`, `y` and their derivatives at `s` (one de Casteljau pass each).
+    fn point(&self, s: f64) -> ProfilePoint;
+
+    /// `x(s)`.
+    fn x(&self, s: f64) -> f64;
+
+    /// `y(s)`.
+    fn y(&self, s: f64) -> f64;
+
+    /// Forms the hit polynomial of the ray `q` on this span (see the
+    /// intersector's module docs; `weights` are its `C(n,i)C(n,j)/C(2n,i+j)`)
+    /// and hands its coefficients and their rounding bound to `then`.
+    fn with_hit_polynomial<R>(
+        &self,
+        q: &Query,
+        weights: &[f64],
+        then: impl FnOnce(&Self::Poly, f64) -> R,
+    ) -> R;
+}
+
+/// A span of `W` coefficients per coordinate (degree `W − 1`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Fixed<'a, const W: usize> {
+    pub(super) xs: &'a [f64; W],
+    pub(super) ys: &'a [f64; W],
+}
+
+/// A span of any degree.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Slices<'a> {
+    pub(super) xs: &'a [f64],
+    pub(super) ys: &'a [f64],
+}
+
+/// `SpanForm` for `Fixed<W>` with a hit polynomial of `F = 2W − 1`
+/// coefficients (stable Rust cannot write `2 * W − 1` as an array length).
+macro_rules! fixed_span_form {
+    ($($w:literal => $f:literal),*) => {$(
+        impl SpanForm for Fixed<'_, $w> {
+            type Poly = [f64; $f];
+
+            #[inline(always)]
+            fn xs(&self) -> &[f64] {
+                self.xs
+            }
+
+            #[inline(always)]
+            fn ys(&self) -> &[f64] {
+                self.ys
+            }
+
+            #[inline(always)]
+            fn point(&self, s: f64) -> ProfilePoint {
+                let (x, dx) = self.xs.value_and_slope(s).unwrap_or((0.0, 0.0));
+                let (y, dy) = self.ys.value_and_slope(s).unwrap_or((0.0, 0.0));
+                ProfilePoint { x, y, dx, dy }
+            }
+
+            #[inline(always)]
+            fn x(&self, s: f64) -> f64 {
+                self.xs.value(s)
+            }
+
+            #[inline(always)]
+            fn y(&self, s: f64) -> f64 {
+                self.ys.value(s)
+            }
+
+            #[inline(always)]
+            fn with_hit_polynomial<R>(
+                &self,
+                q: &Query,
+                weights: &[f64],
+                then: impl FnOnce(&Self::Poly, f64) -> R,
+            ) -> R {
+                let (mut a, mut b, mut c) = ([0.0; $w], [0.0; $w], [0.0; $w]);
+                let m = span_terms(self.xs, self.ys, q, &mut a, &mut b, &mut c);
+                let mut f = [0.0; $f];
+                let err = products_into(&a, &b, &c, m, &weights[..$w * $w], &mut f);
+                then(&f, err)
+            }
+        }
+    )*};
+}
+
+fixed_span_form!(2 => 3, 3 => 5, 4 => 7, 5 => 9, 6 => 11);
+
+impl SpanForm for Slices<'_> {
+    type Poly = [f64];
+
+    fn xs(&self) -> &[f64] {
+        self.xs
+    }
+
+    fn ys(&self) -> &[f64] {
+        self.ys
+    }
+
+    fn point(&self, s: f64) -> ProfilePoint {
+        let [(x, dx), (y, dy)] =
+            eval_pair_with_derivative(self.xs, self.ys, s).unwrap_or([(0.0, 0.0); 2]);
+        ProfilePoint { x, y, dx, dy }
+    }
+
+    fn x(&self, s: f64) -> f64 {
+        self.xs.value(s)
+    }
+
+    fn y(&self, s: f64) -> f64 {
+        self.ys.value(s)
+    }
+
+    fn with_hit_polynomial<R>(
+        &self,
+        q: &Query,
+        weights: &[f64],
+        then: impl FnOnce(&Self::Poly, f64) -> R,
+    ) -> R {
+        let w = self.xs.len();
+        with_scratch(5 * w, 0.0, |buf| {
+            let (a, rest) = buf.split_at_mut(w);
+            let (b, rest) = rest.split_at_mut(w);
+            let (c, f) = rest.split_at_mut(w);
+            let f = &mut f[..(2 * w).saturating_sub(1)];
+            let m = span_terms(self.xs, self.ys, q, a, b, c);
+            let err = products_into(a, b, c, m, weights, f);
+            then(f, err)
+        })
+    }
+}
+
+/// The Bernstein coefficients `aᵢ`, `bᵢ`, `cᵢ` of `A`, `B` and `d_y·x` for
+/// one span (see the intersector's module docs), and the largest magnitudes
+/// of the terms that form them (`|o_x d_y| + |h d_x|` and so on: with
+/// cancellation the rounding error is relative to those, not to the result).
+#[inline(always)]
+fn span_terms(
+    xs: &[f64],
+    ys: &[f64],
+    q: &Query,
+    a: &mut [f64],
+    b: &mut [f64],
+    c: &mut [f64],
+) -> [f64; 3] {
+    let (o, d) = (q.o, q.d);
+    let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
+    let mut m = [0.0_f64; 3];
+    for i in 0..xs.len() {
+        let h = ys[i] - o.y;
+        a[i] = oxdy + h * d.x;
+        b[i] = ozdy + h * d.z;
+        c[i] = d.y * xs[i];
+        m[0] = m[0].max(oxdy.abs() + (h * d.x).abs());
+        m[1] = m[1].max(ozdy.abs() + (h * d.z).abs());
+        m[2] = m[2].max(c[i].abs());
+    }
+    m
+}
+
+/// `f_k = Σ_{i+j=k} wᵢⱼ (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ)` into `f` (length `2n + 1`)
+/// and the bound on its rounding error.
+///
+/// `Σ_{i+j=k} wᵢⱼ = 1` (Vandermonde), so every coefficient is a weighted mean
+/// of terms bounded by `m₀² + m₁² + m₂²` (`m` from [`span_terms`]). The
+/// inputs carry up to 3ε error relative to `m`, products and the three
+/// terms add 3ε, the `n + 1` sums `(n + 1)ε`: `(n + 8)ε` covers them.
+#[inline(always)]
+fn products_into(
+    a: &[f64],
+    b: &[f64],
+    c: &[f64],
+    [ma, mb, mc]: [f64; 3],
+    weights: &[f64],
+    f: &mut [f64],
+) -> f64 {
+    let w = a.len();
+    f.fill(0.0);
+    for i in 0..w {
+        f[2 * i] += weights[i * w + i] * (a[i] * a[i] + b[i] * b[i] - c[i] * c[i]);
+        for j in i + 1..w {
+            f[i + j] += 2.0 * weights[i * w + j] * (a[i] * a[j] + b[i] * b[j] - c[i] * c[j]);
+        }
+    }
+    (w + 7) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
+}
