@@ -707,6 +707,7 @@ fn curvature_bound(c: &[f64], scale: f64) -> f64 {
 
 /// Where the control polygon `(i/n, cᵢ)` first crosses zero (0 if it does
 /// not).
+#[inline]
 fn polygon_crossing(c: &[f64]) -> f64 {
     let n = (c.len() - 1) as f64;
     for (i, w) in c.windows(2).enumerate() {

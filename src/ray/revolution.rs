@@ -32,7 +32,7 @@ use nalgebra::{Point3, Vector3};
 use std::f64::consts::TAU;
 
 /// Spans visited in sorted order; more than this are visited after, unsorted.
-const SORTED_SPANS: usize = 64;
+const SORTED_SPANS: usize = 16;
 
 /// Root pieces narrower than this (in a span's parameter) are handed to
 /// Newton's method as candidates instead of being split further: from there
@@ -440,9 +440,9 @@ impl SpanTable {
         best: &mut Option<LocalHit>,
         report: &mut ExactReport,
     ) {
-        let mut cands = Candidates::default();
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y.
+            let mut cands = Candidates::default();
             let ys = span.ys();
             with_scratch(ys.len(), 0.0, |g| {
                 let mut err = 0.0_f64;
@@ -459,34 +459,69 @@ impl SpanTable {
                     }
                 });
             });
-        } else {
-            span.with_hit_polynomial(q, &self.weights, |f, err| {
-                match quick_roots(f, err, CANDIDATE_WIDTH) {
-                    QuickRoots::None => {}
-                    QuickRoots::One(s) => {
-                        report.roots += 1;
-                        for t in candidate_times(span, q, s) {
-                            cands.push(t, s);
+            cands.sort();
+            let found = cands.as_slice();
+            self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
+            return;
+        }
+        span.with_hit_polynomial(q, &self.weights, |f, err| {
+            match quick_roots(f, err, CANDIDATE_WIDTH) {
+                QuickRoots::None => {}
+                QuickRoots::One(s) => {
+                    // One root, at most two candidates: sorted in place.
+                    report.roots += 1;
+                    let mut pair = [(0.0, s); 2];
+                    let mut n = 0;
+                    for t in candidate_times(span, q, s) {
+                        if t.is_finite() {
+                            pair[n].0 = t;
+                            n += 1;
                         }
                     }
-                    QuickRoots::Search => {
-                        find_roots_to(f.coeffs(), err, CANDIDATE_WIDTH, |root| {
-                            report.roots += 1;
-                            for s in root_samples(root) {
-                                for t in candidate_times(span, q, s) {
-                                    cands.push(t, s);
-                                }
-                            }
-                        });
+                    if n == 2 && pair[1].0 < pair[0].0 {
+                        pair.swap(0, 1);
                     }
+                    let found = &pair[..n];
+                    self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
                 }
-            });
-        }
+                QuickRoots::Search => {
+                    let mut cands = Candidates::default();
+                    find_roots_to(f.coeffs(), err, CANDIDATE_WIDTH, |root| {
+                        report.roots += 1;
+                        for s in root_samples(root) {
+                            for t in candidate_times(span, q, s) {
+                                cands.push(t, s);
+                            }
+                        }
+                    });
+                    cands.sort();
+                    let found = cands.as_slice();
+                    self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
+                }
+            }
+        });
+    }
+
+    /// Polishes the candidates `(t, s)` of span `k` (sorted by `t`) and keeps
+    /// the nearest hit in `best`: candidates whose guessed `t` is beyond the
+    /// best hit so far, with slack for the guess's error, are not polished.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn polish_candidates<P: SpanForm>(
+        &self,
+        k: usize,
+        span: P,
+        q: &Query,
+        candidates: &[(f64, f64)],
+        t_floor: f64,
+        t_best: &mut f64,
+        best: &mut Option<LocalHit>,
+        report: &mut ExactReport,
+    ) {
         // A guess can be off by the root's uncertainty: allow a margin of
         // the object's size along the ray before skipping a candidate.
         let slack = 1e-3 * self.scale / q.d.norm();
-        cands.sort();
-        for &(t, s) in cands.as_slice() {
+        for &(t, s) in candidates {
             if t > *t_best + slack {
                 break;
             }
