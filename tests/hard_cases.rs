@@ -1279,6 +1279,47 @@ fn hits_at_span_joins_polyline() {
     }
 }
 
+/// A bellows: 40 cone segments zigzagging between radii 0.9 and 1.1. A ray
+/// that runs up or down inside the band enters every span's bounding
+/// cylinder, more spans than the intersector sorts by entry (the rest are
+/// solved after, unsorted). Going down, the nearest crossings are on the
+/// last spans of the profile, the ones left unsorted. Every crossing is
+/// found, in order, at its closed-form `t`.
+#[test]
+fn more_spans_entered_than_are_sorted() {
+    let bellows: Vec<(f64, f64)> = (0..=40)
+        .map(|i| (if i % 2 == 0 { 0.9 } else { 1.1 }, 0.1 * f64::from(i)))
+        .collect();
+    let s = polyline(&bellows);
+    let scale = 4.0;
+    for (o, d) in [
+        ([1.0, -1.0, 0.0], [0.001, 1.0, 0.0005]),
+        ([0.0, 5.0, 1.0], [-0.0005, -1.0, 0.001]),
+        ([0.7, -0.5, 0.7], [0.0003, 1.0, 0.0002]),
+    ] {
+        let r = ray(o, d);
+        let ts = polyline_times(&bellows, &r, 1e-9);
+        assert!(ts.len() >= 30, "{} crossings of {r:?}", ts.len());
+        let (_, report) = s.intersect_with_report(&r, 0.0, INF);
+        assert!(report.spans_entered >= 30, "{report:?}");
+        let mut t_min = 0.0;
+        for &t in &ts {
+            let h = s
+                .intersect(&r, t_min, INF)
+                .unwrap_or_else(|| panic!("missed t = {t} of {r:?}"));
+            check_hit(&s, &r, &h, t_min, INF, scale);
+            let k = kappa(&r.dir, &h.normal.into_inner()).min(1e3);
+            assert!(
+                (h.t - t).abs() <= t_tolerance(scale, k, &r.dir),
+                "t = {} but {t} for {r:?}",
+                h.t
+            );
+            t_min = h.t;
+        }
+        expect_miss(&s, &r, t_min, INF);
+    }
+}
+
 /// Rays within `1e-10` of a join height and tilted by `±1e-9`, `±1e-12`: the
 /// crossing is on one span, at the closed-form `t`, its point on the ray and
 /// on the surface. (Regression: profile `STEPPED`, ray `(−5, 1 + 1e-10, 0.2)`

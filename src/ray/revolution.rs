@@ -226,6 +226,30 @@ pub(super) struct Query {
     t_closest: f64,
 }
 
+impl Query {
+    /// The query for the ray `o + t·d` (finite, `d ≠ 0`) at tolerance `tol`
+    /// on an object of size `scale`.
+    pub(super) fn new(o: Vector3<f64>, d: Vector3<f64>, tol: &Tolerance, scale: f64) -> Self {
+        // The tolerance is relative to the object; the rounding floor also
+        // grows with the ray origin's distance.
+        let scale = scale.max(f64::MIN_POSITIVE);
+        let floor = ACCEPT * scale.max(o.amax());
+        let accept = (tol.relative * scale).max(floor);
+        let (a, b) = (d.x * d.x + d.z * d.z, o.x * d.x + o.z * d.z);
+        Query {
+            o,
+            d,
+            accept,
+            target: tol.relative * scale,
+            max_iterations: tol.max_iterations,
+            inv_dy: if d.y == 0.0 { 0.0 } else { 1.0 / d.y },
+            pad_t: accept / d.norm(),
+            radius: (a, b, o.x * o.x + o.z * o.z),
+            t_closest: if a > 0.0 { -b / a } else { 0.0 },
+        }
+    }
+}
+
 impl SpanTable {
     /// The table for a profile given as Bézier spans; `None` when there are
     /// none or their degrees differ.
@@ -323,30 +347,7 @@ impl SpanTable {
         if !(dn > 0.0 && dn.is_finite()) || o.coords.iter().any(|c| !c.is_finite()) {
             return None;
         }
-        // The tolerance is relative to the object; the rounding floor also
-        // grows with the ray origin's distance.
-        let scale = self.scale.max(f64::MIN_POSITIVE);
-        let floor = ACCEPT * scale.max(o.coords.amax());
-        let q = Query {
-            o: o.coords,
-            d,
-            accept: (tol.relative * scale).max(floor),
-            target: tol.relative * scale,
-            max_iterations: tol.max_iterations,
-            inv_dy: if d.y == 0.0 { 0.0 } else { 1.0 / d.y },
-            pad_t: (tol.relative * scale).max(floor) / dn,
-            radius: (
-                d.x * d.x + d.z * d.z,
-                o.x * d.x + o.z * d.z,
-                o.x * o.x + o.z * o.z,
-            ),
-            t_closest: 0.0,
-        };
-        let (a, b, _) = q.radius;
-        let q = Query {
-            t_closest: if a > 0.0 { -b / a } else { 0.0 },
-            ..q
-        };
+        let q = Query::new(o.coords, d, tol, self.scale);
         // Hits within the position uncertainty of the origin are the origin
         // itself (a secondary ray leaving the surface).
         let t_floor = t_min + q.accept / dn;

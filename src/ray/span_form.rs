@@ -216,3 +216,75 @@ fn products_into(
     }
     (w + 7) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Tolerance;
+    use crate::bernstein::{bernstein_sum, binomial};
+    use nalgebra::Vector3;
+
+    /// A small deterministic generator of values in `[−1, 1)`.
+    fn values(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    fn weights(w: usize) -> Vec<f64> {
+        let n = w - 1;
+        (0..w)
+            .flat_map(|i| (0..w).map(move |j| (i, j)))
+            .map(|(i, j)| binomial(n, i) * binomial(n, j) / binomial(2 * n, i + j))
+            .collect()
+    }
+
+    /// Fixed-size and slice spans compute the same numbers, to the bit; the
+    /// hit polynomial agrees with `A² + B² − (d_y x)²` formed from the span's
+    /// own `x(s)`, `y(s)` (Bernstein sums), within its stated error bound
+    /// plus the rounding of that direct evaluation.
+    #[test]
+    fn fixed_and_slice_spans_agree_with_the_direct_formula() {
+        let mut next = values(11);
+        for _ in 0..200 {
+            let xs: [f64; 4] = std::array::from_fn(|_| 2.0 * next());
+            let ys: [f64; 4] = std::array::from_fn(|_| 3.0 * next());
+            let o = Vector3::new(4.0 * next(), 4.0 * next(), 4.0 * next());
+            let d = Vector3::new(next(), next(), next());
+            let q = Query::new(o, d, &Tolerance::default(), 3.0);
+            let w = weights(4);
+            let fixed = Fixed { xs: &xs, ys: &ys };
+            let slices = Slices { xs: &xs, ys: &ys };
+            let (f_fixed, e_fixed) = fixed.with_hit_polynomial(&q, &w, |f, e| (*f, e));
+            let (f_slices, e_slices) = slices.with_hit_polynomial(&q, &w, |f, e| (f.to_vec(), e));
+            assert_eq!(f_fixed.to_vec(), f_slices);
+            assert_eq!(e_fixed, e_slices);
+            for k in 0..=10 {
+                let s = f64::from(k) / 10.0;
+                assert_eq!(fixed.point(s), slices.point(s));
+                assert_eq!((fixed.x(s), fixed.y(s)), (slices.x(s), slices.y(s)));
+                let (x, y) = (
+                    bernstein_sum(&xs, s).unwrap(),
+                    bernstein_sum(&ys, s).unwrap(),
+                );
+                let (a, b, c) = (
+                    o.x * d.y + (y - o.y) * d.x,
+                    o.z * d.y + (y - o.y) * d.z,
+                    d.y * x,
+                );
+                let direct = a * a + b * b - c * c;
+                let got = bernstein_sum(&f_fixed, s).unwrap();
+                let magnitude = (o.x * d.y).abs() + ((y - o.y) * d.x).abs();
+                let rounding = 64.0 * f64::EPSILON * (magnitude + 10.0).powi(2);
+                assert!(
+                    (got - direct).abs() <= e_fixed + rounding,
+                    "f({s}) = {got} but {direct}"
+                );
+            }
+        }
+    }
+}

@@ -39,6 +39,9 @@ pub struct Revolution<C> {
     /// Local frame → world: rotation taking the local `y` axis to the axis,
     /// then translation to the axis origin.
     to_world: Isometry3<f64>,
+    /// `to_world`'s rotation as a matrix: rays and hits are turned with it
+    /// (9 products a vector, against about twice that for the quaternion).
+    rotation: Rotation3<f64>,
     /// The exact intersector's per-surface data, when the profile has
     /// Bézier spans of one degree.
     exact: Option<SpanTable>,
@@ -56,6 +59,7 @@ impl<C: Curve<2>> Revolution<C> {
         Revolution {
             profile,
             to_world: Isometry3::identity(),
+            rotation: Rotation3::identity(),
             exact,
             tolerance: Tolerance::default(),
         }
@@ -94,8 +98,12 @@ impl<C: Curve<2>> Revolution<C> {
         report: &mut ExactReport,
     ) -> Option<Hit> {
         let exact = self.exact.as_ref()?;
-        let o = self.to_world.inverse_transform_point(&ray.origin);
-        let d = self.to_world.inverse_transform_vector(&ray.dir);
+        let origin = &self.to_world.translation.vector;
+        let o = Point3::from(
+            self.rotation
+                .inverse_transform_vector(&(ray.origin.coords - origin)),
+        );
+        let d = self.rotation.inverse_transform_vector(&ray.dir);
         let local = exact.intersect(o, d, t_min, t_max, &self.tolerance, report)?;
         report.residual = Some(local.residual);
         let at_end = local.u >= self.profile.domain().1;
@@ -105,14 +113,14 @@ impl<C: Curve<2>> Revolution<C> {
         }
         // No tangent plane (a cone's apex): face the ray.
         .or_else(|| Unit::try_new(-d, 0.0))?;
-        let point = self.to_world * local.point;
+        let point = Point3::from(self.rotation * local.point.coords + origin);
         if !point.coords.iter().all(|c| c.is_finite()) {
             return None;
         }
         Some(Hit {
             t: local.t,
             point,
-            normal: Unit::new_unchecked(self.to_world.rotation * normal_local.into_inner()),
+            normal: Unit::new_unchecked(self.rotation * normal_local.into_inner()),
             uv: (local.u, local.theta),
         })
     }
@@ -150,6 +158,7 @@ impl<C: Curve<2>> Revolution<C> {
             Translation3::from(origin.coords),
             UnitQuaternion::from_rotation_matrix(&rotation),
         );
+        self.rotation = self.to_world.rotation.to_rotation_matrix();
         self
     }
 
