@@ -36,7 +36,7 @@
 //! root can be reported that exact arithmetic would refute (the caller
 //! verifies), but none is missed.
 
-use crate::bernstein::{Polynomial, eval_with_derivative, subdivide};
+use crate::bernstein::{Polynomial, subdivide};
 use crate::scratch::with_scratch;
 
 /// Deepest subdivision: pieces of width `2⁻⁴⁸` (about `3.6e-15`) are not split.
@@ -309,9 +309,20 @@ fn certain_sign(x: f64, e: f64) -> i8 {
 impl Search {
     /// Decides the piece `c` on `[a, b]` (reporting what it holds), or
     /// returns `true` when it must be split.
-    fn settle(&self, c: &[f64], a: f64, b: f64, depth: u32, found: &mut dyn FnMut(Root)) -> bool {
+    ///
+    /// Generic over the coefficients' storage: pieces of a fixed size run
+    /// every rule and refinement compiled for that size.
+    fn settle<P: Polynomial + ?Sized>(
+        &self,
+        poly: &P,
+        a: f64,
+        b: f64,
+        depth: u32,
+        found: &mut dyn FnMut(Root),
+    ) -> bool {
+        let c = poly.coeffs();
         let e = self.error + self.growth * f64::from(depth + 1);
-        match first_look(c, a, b, e, self.width) {
+        match first_look(poly, a, b, e, self.width) {
             Look::NoRoot => return false,
             Look::Flat => {
                 found(Root::Flat { from: a, to: b });
@@ -329,9 +340,9 @@ impl Search {
             match (certain_sign(f0, e), certain_sign(f1, e)) {
                 // Monotonic: the estimate is the root even when rounding
                 // hides the signs around it.
-                (s0, s1) if s0 * s1 < 0 => {
-                    found(Root::At(refine(c, a, b, self.width).unwrap_or_else(|u| u)))
-                }
+                (s0, s1) if s0 * s1 < 0 => found(Root::At(
+                    refine(poly, a, b, self.width).unwrap_or_else(|u| u),
+                )),
                 (s0, s1) if s0 * s1 > 0 => {}
                 // An end value within the noise: the root is there (or the
                 // curve only grazes zero); report the end nearer to zero.
@@ -339,7 +350,7 @@ impl Search {
             }
             return false;
         }
-        if depth >= CONVEX_DEPTH && self.convex(c, a, b, e, found) {
+        if depth >= CONVEX_DEPTH && self.convex(poly, a, b, e, found) {
             return false;
         }
         if depth >= MAX_DEPTH || b - a < self.width {
@@ -400,7 +411,15 @@ impl Search {
     ///   the noise at an end whose value is uncertain;
     /// - otherwise the minimum is within the noise of zero: one (near-)double
     ///   root at `ŝ`, the grazing contact.
-    fn convex(&self, c: &[f64], a: f64, b: f64, e: f64, found: &mut dyn FnMut(Root)) -> bool {
+    fn convex<P: Polynomial + ?Sized>(
+        &self,
+        poly: &P,
+        a: f64,
+        b: f64,
+        e: f64,
+        found: &mut dyn FnMut(Root),
+    ) -> bool {
+        let c = poly.coeffs();
         let n = c.len() - 1;
         if n < 2 {
             return false;
@@ -430,7 +449,7 @@ impl Search {
         let Some(s_star) = critical else {
             return false;
         };
-        let Some((m, dm)) = eval_with_derivative(c, s_star) else {
+        let Some((m, dm)) = poly.value_and_slope(s_star) else {
             return false;
         };
         let (gm, slope) = (sigma * m, dm.abs() + 2.0 * n as f64 * (e + noise));
@@ -446,7 +465,7 @@ impl Search {
                 1 => {
                     let start = s_star * g0 / (g0 - gm);
                     let root =
-                        refine_within(c, a, b, self.width, (0.0, s_star), sigma < 0.0, start);
+                        refine_within(poly, a, b, self.width, (0.0, s_star), sigma < 0.0, start);
                     found(Root::At(root.unwrap_or_else(|u| u)));
                 }
                 0 => found(Root::At(a)),
@@ -456,7 +475,7 @@ impl Search {
                 1 => {
                     let start = s_star + (1.0 - s_star) * (-gm) / (g1 - gm);
                     let root =
-                        refine_within(c, a, b, self.width, (s_star, 1.0), sigma > 0.0, start);
+                        refine_within(poly, a, b, self.width, (s_star, 1.0), sigma > 0.0, start);
                     found(Root::At(root.unwrap_or_else(|u| u)));
                 }
                 0 => found(Root::At(b)),
@@ -887,7 +906,7 @@ mod tests {
         let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         let n = (c.len() - 1) as f64;
         let noise = 4.0 * n * f64::EPSILON * scale;
-        let (f, df) = eval_with_derivative(c, s).unwrap();
+        let (f, df) = crate::bernstein::eval_with_derivative(c, s).unwrap();
         let newton = s - f / df;
         let taylor = Taylor {
             value: f,
