@@ -199,12 +199,10 @@ enum Look {
 #[inline(always)]
 fn first_look<P: Polynomial + ?Sized>(c: &P, a: f64, b: f64, e: f64, width: f64) -> Look {
     let coeffs = c.coeffs();
-    match classify(coeffs, e) {
+    match sign_pattern(coeffs, e) {
         Signs::Definite => Look::NoRoot,
         Signs::Zero => Look::Flat,
-        Signs::Mixed if one_sign_change(coeffs, e) => {
-            refine(c, a, b, width).map_or(Look::Undecided, Look::One)
-        }
+        Signs::OneChange => refine(c, a, b, width).map_or(Look::Undecided, Look::One),
         Signs::Mixed => Look::Undecided,
     }
 }
@@ -226,16 +224,45 @@ enum Signs {
     Definite,
     /// All within the error of zero.
     Zero,
+    /// Exactly one certain sign change: the ends certainly of opposite
+    /// signs, a run certainly of the first sign, at most one coefficient
+    /// within the noise, then a run certainly of the last sign. Every
+    /// polynomial whose coefficients lie within the error of these has one
+    /// sign change, so by the Bernstein form of Descartes' rule of signs
+    /// (Lane & Riesenfeld 1981) exactly one root in `(0, 1)`, a simple one.
+    OneChange,
     /// Anything else.
     Mixed,
 }
 
-fn classify(c: &[f64], e: f64) -> Signs {
-    let (lo, hi) = extremes(c.iter().copied());
-    if lo > e || hi < -e {
+/// The [`Signs`] of `c` at error `e`, in one pass over the certain signs
+/// `sᵢ ∈ {−1, 0, 1}`: one change means `s₀ ≠ 0`, `sₙ = −s₀`, at most one
+/// `sᵢ = 0` and total variation `Σ|sᵢ₊₁ − sᵢ| = 2` (a sequence from `s₀` to
+/// `−s₀` with no step back).
+#[inline]
+fn sign_pattern(c: &[f64], e: f64) -> Signs {
+    let Some((&first, rest)) = c.split_first() else {
+        return Signs::Zero;
+    };
+    let code = |x: f64| i32::from(x > e) - i32::from(x < -e);
+    let s0 = code(first);
+    let (mut positive, mut negative) = (i32::from(s0 > 0), i32::from(s0 < 0));
+    let (mut variation, mut last) = (0, s0);
+    for &x in rest {
+        let s = code(x);
+        positive += i32::from(s > 0);
+        negative += i32::from(s < 0);
+        variation += (s - last).abs();
+        last = s;
+    }
+    let n = c.len() as i32;
+    let zeros = n - positive - negative;
+    if positive == n || negative == n {
         Signs::Definite
-    } else if lo >= -e && hi <= e {
+    } else if zeros == n {
         Signs::Zero
+    } else if s0 != 0 && last == -s0 && variation == 2 && zeros <= 1 {
+        Signs::OneChange
     } else {
         Signs::Mixed
     }
@@ -268,31 +295,6 @@ fn magnitude(c: &[f64]) -> f64 {
         }
     }
     m
-}
-
-/// Whether every polynomial whose coefficients lie within `e` of `c` has
-/// exactly one sign change in its coefficient sequence: the ends certainly
-/// of opposite signs, a run certainly of the first sign, at most one
-/// coefficient within the noise, then a run certainly of the last sign. By
-/// the Bernstein form of Descartes' rule of signs (Lane & Riesenfeld 1981)
-/// such a polynomial has exactly one root in `(0, 1)`, and it is simple.
-fn one_sign_change(c: &[f64], e: f64) -> bool {
-    let n = c.len() - 1;
-    let (first, last) = (certain_sign(c[0], e), certain_sign(c[n], e));
-    if first * last >= 0 {
-        return false;
-    }
-    let mut i = 1;
-    while i < n && certain_sign(c[i], e) == first {
-        i += 1;
-    }
-    if i < n && certain_sign(c[i], e) == 0 {
-        i += 1;
-    }
-    while i < n && certain_sign(c[i], e) == last {
-        i += 1;
-    }
-    i == n
 }
 
 /// The sign of `x` if it is certain at error `e`, else 0.
@@ -855,14 +857,22 @@ mod tests {
     #[test]
     fn one_sign_change_allows_one_uncertain_coefficient_only() {
         let e = 0.1;
-        assert!(one_sign_change(&[1.0, 1.0, 0.05, -1.0], e));
-        assert!(one_sign_change(&[-1.0, 1.0, 1.0], e));
+        let one = |c: &[f64]| sign_pattern(c, e) == Signs::OneChange;
+        assert!(one(&[1.0, 1.0, 0.05, -1.0]));
+        assert!(one(&[-1.0, 1.0, 1.0]));
+        assert!(one(&[1.0, -1.0]));
         // Two coefficients in the noise could be +, − between the runs.
-        assert!(!one_sign_change(&[1.0, 0.05, -0.05, -1.0], e));
-        assert!(!one_sign_change(&[1.0, -1.0, 1.0, -1.0], e));
+        assert!(!one(&[1.0, 0.05, -0.05, -1.0]));
+        assert!(!one(&[1.0, -1.0, 1.0, -1.0]));
+        // A step back within the noise: +, 0, +, − could change sign thrice.
+        assert!(!one(&[1.0, 0.05, 1.0, -1.0]));
         // An end in the noise is never certain.
-        assert!(!one_sign_change(&[0.05, -1.0, -1.0], e));
-        assert!(!one_sign_change(&[1.0, 1.0], e));
+        assert!(!one(&[0.05, -1.0, -1.0]));
+        assert!(!one(&[1.0, 1.0]));
+        assert_eq!(sign_pattern(&[1.0, 1.0], e), Signs::Definite);
+        assert_eq!(sign_pattern(&[-1.0, -0.2], e), Signs::Definite);
+        assert_eq!(sign_pattern(&[0.05, -0.1, 0.0], e), Signs::Zero);
+        assert_eq!(sign_pattern(&[0.05, 1.0, 0.0], e), Signs::Mixed);
     }
 
     #[test]
