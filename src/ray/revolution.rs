@@ -12,7 +12,7 @@
 //! coefficients come straight from the control points, so `f` has degree `2n`
 //! with coefficients `f_k = Σ_{i+j=k} C(n,i)C(n,j)/C(2n,k) (aᵢaⱼ + bᵢbⱼ − cᵢcⱼ)`.
 //! The same sums over magnitudes give a rounding bound for every
-//! coefficient, so [`find_roots`] can isolate all roots without missing one.
+//! coefficient, so [`find_roots`](crate::roots::find_roots) can isolate all roots without missing one.
 //! Each root `u` gives `t` (from the height, or from the radius for shallow
 //! rays), and Newton's method on the unsquared system polishes the hit: in
 //! the meridian plane, with the angle eliminated exactly (`θ` is the ray
@@ -22,6 +22,12 @@
 //! Spans are culled by their height and radius ranges and visited in order of
 //! where the ray enters their bounding cylinder; the search stops once the
 //! best hit is nearer than the next span.
+//!
+//! Spans of degree ≤ 5 are worked on as fixed-size arrays
+//! ([`span_form`](super::span_form)): the polynomial, the root decision, the
+//! refinement and the polish are compiled for that size. Most spans are
+//! decided by [`quick_roots`] (no root, or one certain sign change and its
+//! refined root); the rest go to the full search, [`find_roots_to`].
 
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
