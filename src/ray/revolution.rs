@@ -32,7 +32,6 @@
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
-use crate::scratch::with_scratch;
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::TAU;
@@ -448,48 +447,41 @@ impl SpanTable {
         report: &mut ExactReport,
     ) {
         if q.d.y == 0.0 {
-            // Perpendicular to the axis: the ray stays at height o_y.
-            let mut cands = Candidates::default();
-            let ys = span.ys();
-            with_scratch(ys.len(), 0.0, |g| {
-                let mut err = 0.0_f64;
-                for (gi, &y) in g.iter_mut().zip(ys) {
-                    *gi = y - q.o.y;
-                    err = err.max(2.0 * f64::EPSILON * (y.abs() + q.o.y.abs()));
-                }
-                find_roots_to(g, err, CANDIDATE_WIDTH, |root| {
-                    report.roots += 1;
-                    for s in root_samples(root) {
-                        for t in circle_times(q, span.x(s)).into_iter().flatten() {
-                            cands.push(t, s);
-                        }
+            // Perpendicular to the axis: the ray stays at height o_y, and
+            // crosses the circle of each root's radius.
+            span.with_height_polynomial(q.o.y, |g, err| {
+                match quick_roots(g, err, CANDIDATE_WIDTH) {
+                    QuickRoots::None => {}
+                    QuickRoots::One(s) => {
+                        report.roots += 1;
+                        let times = circle_times(q, span.x(s)).into_iter().flatten();
+                        self.polish_root(k, span, q, s, times, t_floor, t_best, best, report);
                     }
-                });
+                    QuickRoots::Search => {
+                        let mut cands = Candidates::default();
+                        find_roots_to(g.coeffs(), err, CANDIDATE_WIDTH, |root| {
+                            report.roots += 1;
+                            for s in root_samples(root) {
+                                for t in circle_times(q, span.x(s)).into_iter().flatten() {
+                                    cands.push(t, s);
+                                }
+                            }
+                        });
+                        cands.sort();
+                        let found = cands.as_slice();
+                        self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
+                    }
+                }
             });
-            cands.sort();
-            let found = cands.as_slice();
-            self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
             return;
         }
         span.with_hit_polynomial(q, &self.weights, |f, err| {
             match quick_roots(f, err, CANDIDATE_WIDTH) {
                 QuickRoots::None => {}
                 QuickRoots::One(s) => {
-                    // One root, at most two candidates: sorted in place.
                     report.roots += 1;
-                    let mut pair = [(0.0, s); 2];
-                    let mut n = 0;
-                    for t in candidate_times(span, q, s) {
-                        if t.is_finite() {
-                            pair[n].0 = t;
-                            n += 1;
-                        }
-                    }
-                    if n == 2 && pair[1].0 < pair[0].0 {
-                        pair.swap(0, 1);
-                    }
-                    let found = &pair[..n];
-                    self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
+                    let times = candidate_times(span, q, s);
+                    self.polish_root(k, span, q, s, times, t_floor, t_best, best, report);
                 }
                 QuickRoots::Search => {
                     let mut cands = Candidates::default();
@@ -507,6 +499,37 @@ impl SpanTable {
                 }
             }
         });
+    }
+
+    /// [`polish_candidates`](Self::polish_candidates) for the one root `s`
+    /// of span `k` and its (at most two) ray parameters `times`, sorted on
+    /// the stack.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn polish_root<P: SpanForm>(
+        &self,
+        k: usize,
+        span: P,
+        q: &Query,
+        s: f64,
+        times: impl Iterator<Item = f64>,
+        t_floor: f64,
+        t_best: &mut f64,
+        best: &mut Option<LocalHit>,
+        report: &mut ExactReport,
+    ) {
+        let mut pair = [(0.0, s); 2];
+        let mut n = 0;
+        for t in times.take(2) {
+            if t.is_finite() {
+                pair[n].0 = t;
+                n += 1;
+            }
+        }
+        if n == 2 && pair[1].0 < pair[0].0 {
+            pair.swap(0, 1);
+        }
+        self.polish_candidates(k, span, q, &pair[..n], t_floor, t_best, best, report);
     }
 
     /// Polishes the candidates `(t, s)` of span `k` (sorted by `t`) and keeps

@@ -25,11 +25,11 @@ pub(super) trait SpanForm: Copy {
     /// The coefficients of the hit polynomial `f` (degree `2n`).
     type Poly: Polynomial + ?Sized;
 
+    /// The coefficients of `y(s) − h` (degree `n`).
+    type Heights: Polynomial + ?Sized;
+
     /// The `x` coefficients.
     fn xs(&self) -> &[f64];
-
-    /// The `y` coefficients.
-    fn ys(&self) -> &[f64];
 
     /// `x`, `y` and their derivatives at `s` (one de Casteljau pass each).
     fn point(&self, s: f64) -> ProfilePoint;
@@ -49,6 +49,22 @@ pub(super) trait SpanForm: Copy {
         weights: &[f64],
         then: impl FnOnce(&Self::Poly, f64) -> R,
     ) -> R;
+
+    /// Forms `y(s) − h`, which vanishes where a ray perpendicular to the
+    /// axis at height `h` meets the span's circles, and hands its
+    /// coefficients and their rounding bound (`2ε(|yᵢ| + |h|)`) to `then`.
+    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Heights, f64) -> R) -> R;
+}
+
+/// `y(s) − h` into `g` and its rounding bound.
+#[inline(always)]
+fn heights(ys: &[f64], h: f64, g: &mut [f64]) -> f64 {
+    let mut err = 0.0_f64;
+    for (gi, &y) in g.iter_mut().zip(ys) {
+        *gi = y - h;
+        err = err.max(2.0 * f64::EPSILON * (y.abs() + h.abs()));
+    }
+    err
 }
 
 /// A span of `W` coefficients per coordinate (degree `W − 1`).
@@ -71,15 +87,11 @@ macro_rules! fixed_span_form {
     ($($w:literal => $f:literal),*) => {$(
         impl SpanForm for Fixed<'_, $w> {
             type Poly = [f64; $f];
+            type Heights = [f64; $w];
 
             #[inline(always)]
             fn xs(&self) -> &[f64] {
                 self.xs
-            }
-
-            #[inline(always)]
-            fn ys(&self) -> &[f64] {
-                self.ys
             }
 
             #[inline(always)]
@@ -112,6 +124,17 @@ macro_rules! fixed_span_form {
                 let err = products_into(&a, &b, &c, m, &weights[..$w * $w], &mut f);
                 then(&f, err)
             }
+
+            #[inline(always)]
+            fn with_height_polynomial<R>(
+                &self,
+                h: f64,
+                then: impl FnOnce(&Self::Heights, f64) -> R,
+            ) -> R {
+                let mut g = [0.0; $w];
+                let err = heights(self.ys, h, &mut g);
+                then(&g, err)
+            }
         }
     )*};
 }
@@ -120,13 +143,10 @@ fixed_span_form!(2 => 3, 3 => 5, 4 => 7, 5 => 9, 6 => 11);
 
 impl SpanForm for Slices<'_> {
     type Poly = [f64];
+    type Heights = [f64];
 
     fn xs(&self) -> &[f64] {
         self.xs
-    }
-
-    fn ys(&self) -> &[f64] {
-        self.ys
     }
 
     fn point(&self, s: f64) -> ProfilePoint {
@@ -158,6 +178,13 @@ impl SpanForm for Slices<'_> {
             let m = span_terms(self.xs, self.ys, q, a, b, c);
             let err = products_into(a, b, c, m, weights, f);
             then(f, err)
+        })
+    }
+
+    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Heights, f64) -> R) -> R {
+        with_scratch(self.ys.len(), 0.0, |g| {
+            let err = heights(self.ys, h, g);
+            then(g, err)
         })
     }
 }
@@ -244,9 +271,10 @@ mod tests {
     }
 
     /// Fixed-size and slice spans compute the same numbers, to the bit; the
-    /// hit polynomial agrees with `A² + B² − (d_y x)²` formed from the span's
-    /// own `x(s)`, `y(s)` (Bernstein sums), within its stated error bound
-    /// plus the rounding of that direct evaluation.
+    /// hit polynomial agrees with `A² + B² − (d_y x)²` and the height
+    /// polynomial with `y − h`, both formed from the span's own `x(s)`,
+    /// `y(s)` (Bernstein sums), within their stated error bounds plus the
+    /// rounding of that direct evaluation.
     #[test]
     fn fixed_and_slice_spans_agree_with_the_direct_formula() {
         let mut next = values(11);
@@ -263,6 +291,11 @@ mod tests {
             let (f_slices, e_slices) = slices.with_hit_polynomial(&q, &w, |f, e| (f.to_vec(), e));
             assert_eq!(f_fixed.to_vec(), f_slices);
             assert_eq!(e_fixed, e_slices);
+            let h = 3.0 * next();
+            let (g_fixed, eg_fixed) = fixed.with_height_polynomial(h, |g, e| (*g, e));
+            let (g_slices, eg_slices) = slices.with_height_polynomial(h, |g, e| (g.to_vec(), e));
+            assert_eq!(g_fixed.to_vec(), g_slices);
+            assert_eq!(eg_fixed, eg_slices);
             for k in 0..=10 {
                 let s = f64::from(k) / 10.0;
                 assert_eq!(fixed.point(s), slices.point(s));
@@ -276,6 +309,8 @@ mod tests {
                     o.z * d.y + (y - o.y) * d.z,
                     d.y * x,
                 );
+                let height = bernstein_sum(&g_fixed, s).unwrap();
+                assert!((height - (y - h)).abs() <= eg_fixed + 8.0 * f64::EPSILON * 6.0);
                 let direct = a * a + b * b - c * c;
                 let got = bernstein_sum(&f_fixed, s).unwrap();
                 let magnitude = (o.x * d.y).abs() + ((y - o.y) * d.x).abs();
