@@ -449,87 +449,72 @@ impl SpanTable {
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y, and
             // crosses the circle of each root's radius.
+            let times = |s: f64| circle_times(q, span.x(s));
             span.with_height_polynomial(q.o.y, |g, err| {
-                match quick_roots(g, err, CANDIDATE_WIDTH) {
-                    QuickRoots::None => {}
-                    QuickRoots::One(s) => {
-                        report.roots += 1;
-                        let times = circle_times(q, span.x(s)).into_iter().flatten();
-                        self.polish_root(k, span, q, s, times, t_floor, t_best, best, report);
-                    }
-                    QuickRoots::Search => {
-                        let mut cands = Candidates::default();
-                        find_roots_to(g.coeffs(), err, CANDIDATE_WIDTH, |root| {
-                            report.roots += 1;
-                            for s in root_samples(root) {
-                                for t in circle_times(q, span.x(s)).into_iter().flatten() {
-                                    cands.push(t, s);
-                                }
-                            }
-                        });
-                        cands.sort();
-                        let found = cands.as_slice();
-                        self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
-                    }
-                }
+                self.root_hits(k, span, q, g, err, times, t_floor, t_best, best, report);
             });
-            return;
+        } else {
+            let times = |s: f64| candidate_times(span, q, s);
+            span.with_hit_polynomial(q, &self.weights, |f, err| {
+                self.root_hits(k, span, q, f, err, times, t_floor, t_best, best, report);
+            });
         }
-        span.with_hit_polynomial(q, &self.weights, |f, err| {
-            match quick_roots(f, err, CANDIDATE_WIDTH) {
-                QuickRoots::None => {}
-                QuickRoots::One(s) => {
-                    report.roots += 1;
-                    let times = candidate_times(span, q, s);
-                    self.polish_root(k, span, q, s, times, t_floor, t_best, best, report);
-                }
-                QuickRoots::Search => {
-                    let mut cands = Candidates::default();
-                    find_roots_to(f.coeffs(), err, CANDIDATE_WIDTH, |root| {
-                        report.roots += 1;
-                        for s in root_samples(root) {
-                            for t in candidate_times(span, q, s) {
-                                cands.push(t, s);
-                            }
-                        }
-                    });
-                    cands.sort();
-                    let found = cands.as_slice();
-                    self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
-                }
-            }
-        });
     }
 
-    /// [`polish_candidates`](Self::polish_candidates) for the one root `s`
-    /// of span `k` and its (at most two) ray parameters `times`, sorted on
-    /// the stack.
+    /// The hits of span `k` from `poly` (coefficients known to within
+    /// `err`), which vanishes at the profile parameter of every hit: each
+    /// root `s` gives up to two ray parameters `times(s)`, polished nearest
+    /// first. No root or one is decided by [`quick_roots`] (the one root's
+    /// candidates sorted on the stack), anything else by the full search.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn polish_root<P: SpanForm>(
+    fn root_hits<P: SpanForm, Q: Polynomial + ?Sized>(
         &self,
         k: usize,
         span: P,
         q: &Query,
-        s: f64,
-        times: impl Iterator<Item = f64>,
+        poly: &Q,
+        err: f64,
+        times: impl Fn(f64) -> [Option<f64>; 2],
         t_floor: f64,
         t_best: &mut f64,
         best: &mut Option<LocalHit>,
         report: &mut ExactReport,
     ) {
-        let mut pair = [(0.0, s); 2];
-        let mut n = 0;
-        for t in times.take(2) {
-            if t.is_finite() {
-                pair[n].0 = t;
-                n += 1;
+        match quick_roots(poly, err, CANDIDATE_WIDTH) {
+            QuickRoots::None => {}
+            QuickRoots::One(s) => {
+                // At most two candidates: sorted on the stack.
+                report.roots += 1;
+                let mut pair = [(0.0, s); 2];
+                let mut n = 0;
+                for t in times(s).into_iter().flatten() {
+                    if t.is_finite() {
+                        pair[n].0 = t;
+                        n += 1;
+                    }
+                }
+                if n == 2 && pair[1].0 < pair[0].0 {
+                    pair.swap(0, 1);
+                }
+                let found = &pair[..n];
+                self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
+            }
+            QuickRoots::Search => {
+                let mut cands = Candidates::default();
+                find_roots_to(poly.coeffs(), err, CANDIDATE_WIDTH, |root| {
+                    report.roots += 1;
+                    for s in root_samples(root) {
+                        for t in times(s).into_iter().flatten() {
+                            cands.push(t, s);
+                        }
+                    }
+                });
+                cands.sort();
+                let found = cands.as_slice();
+                self.polish_candidates(k, span, q, found, t_floor, t_best, best, report);
             }
         }
-        if n == 2 && pair[1].0 < pair[0].0 {
-            pair.swap(0, 1);
-        }
-        self.polish_candidates(k, span, q, &pair[..n], t_floor, t_best, best, report);
     }
 
     /// Polishes the candidates `(t, s)` of span `k` (sorted by `t`) and keeps
@@ -707,12 +692,12 @@ impl SpanTable {
 /// the ray is steep, else from the radius (both crossings), nearest the
 /// height's answer first.
 #[inline(always)]
-fn candidate_times<P: SpanForm>(span: P, q: &Query, s: f64) -> impl Iterator<Item = f64> {
+fn candidate_times<P: SpanForm>(span: P, q: &Query, s: f64) -> [Option<f64>; 2] {
     let y = span.y(s);
     let t_height = (y - q.o.y) / q.d.y;
     // |d_y| ≥ |d_xz|, compared squared (|d| is finite, so the squares
     // are too).
-    let times = if q.d.y * q.d.y >= q.radius.0 {
+    if q.d.y * q.d.y >= q.radius.0 {
         [Some(t_height), None]
     } else {
         let [a, b] = circle_times(q, span.x(s));
@@ -727,8 +712,7 @@ fn candidate_times<P: SpanForm>(span: P, q: &Query, s: f64) -> impl Iterator<Ite
             }
             _ => [Some(t_height), None],
         }
-    };
-    times.into_iter().flatten()
+    }
 }
 
 /// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's
