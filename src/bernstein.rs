@@ -240,33 +240,6 @@ impl Polynomial for [f64] {
     }
 }
 
-/// The values and first derivatives at `t` of two polynomials of the same
-/// degree, `[(a(t), a′(t)), (b(t), b′(t))]`: the two coordinates of a planar
-/// Bézier curve stored apart. The results are exactly those of two calls of
-/// [`eval_with_derivative`]; the size is dispatched once and both cascades
-/// are unrolled together (degree ≤ 16). `None` when the lengths differ or are
-/// zero.
-#[inline]
-pub(crate) fn eval_pair_with_derivative(a: &[f64], b: &[f64], t: f64) -> Option<[(f64, f64); 2]> {
-    if a.len() != b.len() {
-        return None;
-    }
-    macro_rules! pair_sizes {
-        ($($n:literal),*) => {
-            match a.len() {
-                $($n => {
-                    if let (Ok(a), Ok(b)) = (<[f64; $n]>::try_from(a), <[f64; $n]>::try_from(b)) {
-                        return Some([both(a, t), both(b, t)]);
-                    }
-                })*
-                _ => {}
-            }
-        };
-    }
-    pair_sizes!(1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17);
-    Some([eval_with_derivative(a, t)?, eval_with_derivative(b, t)?])
-}
-
 /// Replaces the coefficients of `p` (degree `n = c.len() − 1`) by those of its
 /// derivative `p′` (degree `n − 1`, the hodograph: `n·(cᵢ₊₁ − cᵢ)`), in place in
 /// `c[..n]`, and returns the new length `n`. An empty slice stays empty.
@@ -396,23 +369,26 @@ mod tests {
     }
 
     #[test]
-    fn pair_evaluation_is_two_single_evaluations() {
-        let xs = [1.0, 2.0, -1.0, 4.0, 0.5, 3.0];
-        let ys = [0.3, -2.0, 1.5, 0.25, 7.0, -1.0];
-        for len in 1..=xs.len() {
+    fn fixed_and_slice_polynomials_are_eval() {
+        fn check<const N: usize>(c: [f64; N]) {
             for k in 0..=10 {
                 let t = f64::from(k) / 10.0;
-                let pair = eval_pair_with_derivative(&xs[..len], &ys[..len], t).unwrap();
-                assert_eq!(pair[0], eval_with_derivative(&xs[..len], t).unwrap());
-                assert_eq!(pair[1], eval_with_derivative(&ys[..len], t).unwrap());
+                let want = eval_with_derivative(&c[..], t);
+                assert_eq!(c.value_and_slope(t), want);
+                assert_eq!(c[..].value_and_slope(t), want);
+                assert_eq!(c.value(t), eval(&c[..], t).unwrap_or(0.0));
+                assert_eq!(c[..].value(t), c.value(t));
             }
+            assert_eq!(c.coeffs(), &c[..]);
         }
-        // Beyond the unrolled sizes, and mismatched or empty rows.
-        let long: Vec<f64> = (0..20).map(|i| f64::from(i).sin()).collect();
-        let pair = eval_pair_with_derivative(&long, &long, 0.3).unwrap();
-        assert_eq!(pair[1], eval_with_derivative(&long, 0.3).unwrap());
-        assert_eq!(eval_pair_with_derivative(&xs, &ys[..3], 0.5), None);
-        assert_eq!(eval_pair_with_derivative(&[], &[], 0.5), None);
+        check([1.0]);
+        check([1.0, 2.0]);
+        check([1.0, 2.0, -1.0, 4.0]);
+        check([1.0, 2.0, -1.0, 4.0, 0.5, 3.0]);
+        // Beyond the unrolled sizes, and no coefficients at all.
+        let long: [f64; 20] = std::array::from_fn(|i| (i as f64).sin());
+        check(long);
+        check([]);
     }
 
     #[test]

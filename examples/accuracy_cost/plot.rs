@@ -103,6 +103,16 @@ struct Style {
 }
 
 impl Style {
+    /// The SVG `stroke-dasharray` attribute (with its leading space), or
+    /// nothing for a solid line.
+    fn dash_attribute(&self) -> String {
+        if self.dash.is_empty() {
+            String::new()
+        } else {
+            format!(r#" stroke-dasharray="{}""#, self.dash)
+        }
+    }
+
     fn of(index: usize) -> Self {
         // Cycle shapes and colours with coprime periods, so that the first
         // 56 series all differ in (colour, shape).
@@ -372,11 +382,7 @@ fn draw_panel(
         }
         for run in runs.iter().filter(|r| r.len() >= 2) {
             let coords: Vec<String> = run.iter().map(|(a, b)| format!("{a:.2},{b:.2}")).collect();
-            let dash = if style.dash.is_empty() {
-                String::new()
-            } else {
-                format!(r#" stroke-dasharray="{}""#, style.dash)
-            };
+            let dash = style.dash_attribute();
             let _ = writeln!(
                 svg,
                 r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.6"{dash}/>"#,
@@ -405,11 +411,7 @@ fn draw_legend(svg: &mut String, names: &[&str], style_of: &dyn Fn(&str) -> Styl
     for (i, name) in names.iter().enumerate() {
         let style = style_of(name);
         let y = TOP + 10.0 + 24.0 * i as f64;
-        let dash = if style.dash.is_empty() {
-            String::new()
-        } else {
-            format!(r#" stroke-dasharray="{}""#, style.dash)
-        };
+        let dash = style.dash_attribute();
         let _ = writeln!(
             svg,
             r#"<line x1="{x:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{}" stroke-width="1.6"{dash}/>"#,

@@ -70,6 +70,17 @@ pub struct SurfaceHit {
     pub object: usize,
 }
 
+impl SurfaceHit {
+    /// The normal on the side the ray `d` comes from, and whether that is
+    /// the front (`d·n ≤ 0` for the stored normal `n`: the ray enters a
+    /// closed body).
+    pub fn facing(&self, d: &Vector3<f64>) -> (Vector3<f64>, bool) {
+        let outward = self.normal.into_inner();
+        let front = d.dot(&outward) <= 0.0;
+        (if front { outward } else { -outward }, front)
+    }
+}
+
 /// Time spent in revolution intersection, for the report.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct IntersectStats {

@@ -75,9 +75,7 @@ pub fn radiance(tracer: &Tracer<'_>, camera_ray: &Ray, rng: &mut Rng, stats: &mu
         };
         let material = tracer.material(hit.object);
         let d = ray.dir;
-        let outward = hit.normal.into_inner();
-        let front = d.dot(&outward) <= 0.0;
-        let n = if front { outward } else { -outward };
+        let (n, front) = hit.facing(&d);
         let v = -d;
         let p = hit.point;
 

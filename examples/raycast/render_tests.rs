@@ -193,6 +193,18 @@ fn ball_over_floor() -> Scene {
     )
 }
 
+/// [`ball_over_floor`] lit by one white unit-square area light at height 3.
+fn ball_under_area_light() -> Scene {
+    let mut s = ball_over_floor();
+    s.lights = vec![Light::Area {
+        corner: Point3::new(-0.5, 3.0, -0.5),
+        edge1: Vector3::new(1.0, 0.0, 0.0),
+        edge2: Vector3::new(0.0, 0.0, 1.0),
+        color: Color::repeat(1.0),
+    }];
+    s
+}
+
 #[test]
 fn shadows_true_casts_shadows_with_shadow_rays() {
     let mut s = ball_over_floor();
@@ -228,13 +240,7 @@ fn shadows_true_casts_shadows_with_shadow_rays() {
 
 #[test]
 fn an_area_light_gives_a_penumbra() {
-    let mut s = ball_over_floor();
-    s.lights = vec![Light::Area {
-        corner: Point3::new(-0.5, 3.0, -0.5),
-        edge1: Vector3::new(1.0, 0.0, 0.0),
-        edge2: Vector3::new(0.0, 0.0, 1.0),
-        color: Color::repeat(1.0),
-    }];
+    let s = ball_under_area_light();
     let effects = Effects::of(&s, None);
     assert!(effects.soft_shadows && effects.light_samples == 16);
     let (image, stats) = run(&s);
@@ -696,13 +702,7 @@ fn inside_a_glowing_diffuse_sphere_the_bounces_sum_to_a_geometric_series() {
 
 #[test]
 fn shadows_false_keeps_area_lights_without_shadow_rays() {
-    let mut s = ball_over_floor();
-    s.lights = vec![Light::Area {
-        corner: Point3::new(-0.5, 3.0, -0.5),
-        edge1: Vector3::new(1.0, 0.0, 0.0),
-        edge2: Vector3::new(0.0, 0.0, 1.0),
-        color: Color::repeat(1.0),
-    }];
+    let mut s = ball_under_area_light();
     s.render.shadows = Some(false);
     let (image, stats) = run(&s);
     assert_eq!(stats.rays.shadow, 0);

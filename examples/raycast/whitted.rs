@@ -64,9 +64,7 @@ pub fn trace(
     let effects = &tracer.effects;
     let material = tracer.material(hit.object);
     let d = ray.dir;
-    let outward = hit.normal.into_inner();
-    let front = d.dot(&outward) <= 0.0;
-    let n = if front { outward } else { -outward };
+    let (n, front) = hit.facing(&d);
     let v = -d;
     let p = hit.point;
     let kd = shading::diffuse_at(material, hit.uv, effects.textures);

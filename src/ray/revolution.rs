@@ -626,7 +626,7 @@ impl SpanTable {
         // if it fits better.
         let (_, s_best, _, at_best) = best;
         if q.d.y != 0.0 && at_best.x.abs() <= 1e-6 * self.scale {
-            if let Some(s_axis) = axis_root(span.xs(), s_best) {
+            if let Some(s_axis) = axis_root(span.xs().coeffs(), s_best) {
                 let axis = eval(s_axis);
                 let y = axis.y;
                 let t_axis = (y - q.o.y) / q.d.y;

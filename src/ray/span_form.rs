@@ -7,7 +7,7 @@
 //! use slices ([`Slices`]). Both compute the same numbers.
 
 use super::revolution::Query;
-use crate::bernstein::{Polynomial, eval_pair_with_derivative};
+use crate::bernstein::Polynomial;
 use crate::scratch::with_scratch;
 
 /// A span's point `(x, y)` at one parameter and its derivative `(x′, y′)`.
@@ -25,20 +25,34 @@ pub(super) trait SpanForm: Copy {
     /// The coefficients of the hit polynomial `f` (degree `2n`).
     type Poly: Polynomial + ?Sized;
 
-    /// The coefficients of `y(s) − h` (degree `n`).
-    type Heights: Polynomial + ?Sized;
+    /// The coefficients of `x(s)`, `y(s)` and `y(s) − h` (degree `n`).
+    type Coeffs: Polynomial + ?Sized;
 
     /// The `x` coefficients.
-    fn xs(&self) -> &[f64];
+    fn xs(&self) -> &Self::Coeffs;
+
+    /// The `y` coefficients.
+    fn ys(&self) -> &Self::Coeffs;
 
     /// `x`, `y` and their derivatives at `s` (one de Casteljau pass each).
-    fn point(&self, s: f64) -> ProfilePoint;
+    #[inline(always)]
+    fn point(&self, s: f64) -> ProfilePoint {
+        let (x, dx) = self.xs().value_and_slope(s).unwrap_or((0.0, 0.0));
+        let (y, dy) = self.ys().value_and_slope(s).unwrap_or((0.0, 0.0));
+        ProfilePoint { x, y, dx, dy }
+    }
 
     /// `x(s)`.
-    fn x(&self, s: f64) -> f64;
+    #[inline(always)]
+    fn x(&self, s: f64) -> f64 {
+        self.xs().value(s)
+    }
 
     /// `y(s)`.
-    fn y(&self, s: f64) -> f64;
+    #[inline(always)]
+    fn y(&self, s: f64) -> f64 {
+        self.ys().value(s)
+    }
 
     /// Forms the hit polynomial of the ray `q` on this span (see the
     /// intersector's module docs; `weights` are its `C(n,i)C(n,j)/C(2n,i+j)`)
@@ -53,7 +67,7 @@ pub(super) trait SpanForm: Copy {
     /// Forms `y(s) − h`, which vanishes where a ray perpendicular to the
     /// axis at height `h` meets the span's circles, and hands its
     /// coefficients and their rounding bound (`2ε(|yᵢ| + |h|)`) to `then`.
-    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Heights, f64) -> R) -> R;
+    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Coeffs, f64) -> R) -> R;
 }
 
 /// `y(s) − h` into `g` and its rounding bound.
@@ -87,28 +101,16 @@ macro_rules! fixed_span_form {
     ($($w:literal => $f:literal),*) => {$(
         impl SpanForm for Fixed<'_, $w> {
             type Poly = [f64; $f];
-            type Heights = [f64; $w];
+            type Coeffs = [f64; $w];
 
             #[inline(always)]
-            fn xs(&self) -> &[f64] {
+            fn xs(&self) -> &Self::Coeffs {
                 self.xs
             }
 
             #[inline(always)]
-            fn point(&self, s: f64) -> ProfilePoint {
-                let (x, dx) = self.xs.value_and_slope(s).unwrap_or((0.0, 0.0));
-                let (y, dy) = self.ys.value_and_slope(s).unwrap_or((0.0, 0.0));
-                ProfilePoint { x, y, dx, dy }
-            }
-
-            #[inline(always)]
-            fn x(&self, s: f64) -> f64 {
-                self.xs.value(s)
-            }
-
-            #[inline(always)]
-            fn y(&self, s: f64) -> f64 {
-                self.ys.value(s)
+            fn ys(&self) -> &Self::Coeffs {
+                self.ys
             }
 
             #[inline(always)]
@@ -129,7 +131,7 @@ macro_rules! fixed_span_form {
             fn with_height_polynomial<R>(
                 &self,
                 h: f64,
-                then: impl FnOnce(&Self::Heights, f64) -> R,
+                then: impl FnOnce(&Self::Coeffs, f64) -> R,
             ) -> R {
                 let mut g = [0.0; $w];
                 let err = heights(self.ys, h, &mut g);
@@ -143,24 +145,14 @@ fixed_span_form!(2 => 3, 3 => 5, 4 => 7, 5 => 9, 6 => 11);
 
 impl SpanForm for Slices<'_> {
     type Poly = [f64];
-    type Heights = [f64];
+    type Coeffs = [f64];
 
-    fn xs(&self) -> &[f64] {
+    fn xs(&self) -> &Self::Coeffs {
         self.xs
     }
 
-    fn point(&self, s: f64) -> ProfilePoint {
-        let [(x, dx), (y, dy)] =
-            eval_pair_with_derivative(self.xs, self.ys, s).unwrap_or([(0.0, 0.0); 2]);
-        ProfilePoint { x, y, dx, dy }
-    }
-
-    fn x(&self, s: f64) -> f64 {
-        self.xs.value(s)
-    }
-
-    fn y(&self, s: f64) -> f64 {
-        self.ys.value(s)
+    fn ys(&self) -> &Self::Coeffs {
+        self.ys
     }
 
     fn with_hit_polynomial<R>(
@@ -181,7 +173,7 @@ impl SpanForm for Slices<'_> {
         })
     }
 
-    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Heights, f64) -> R) -> R {
+    fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Coeffs, f64) -> R) -> R {
         with_scratch(self.ys.len(), 0.0, |g| {
             let err = heights(self.ys, h, g);
             then(g, err)

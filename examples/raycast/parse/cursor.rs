@@ -12,12 +12,14 @@ use revolve::nalgebra::{Point3, Vector3};
 
 use super::ParseError;
 use super::lexer::{Kind, Pos, Token, tokenize};
+use super::objects::OBJECTS;
 use super::suggest::did_you_mean;
 
 /// Results of the parser.
 pub(super) type Result<T> = std::result::Result<T, ParseError>;
 
-/// Every block keyword of the format, to explain a misplaced one.
+/// The block keywords of the format other than the objects
+/// ([`OBJECTS`]), to explain a misplaced one.
 const BLOCK_KEYWORDS: &[&str] = &[
     "PerspectiveCamera",
     "Lights",
@@ -28,19 +30,6 @@ const BLOCK_KEYWORDS: &[&str] = &[
     "Materials",
     "PhongMaterial",
     "Material",
-    "Group",
-    "Transform",
-    "Sphere",
-    "Plane",
-    "Triangle",
-    "TriangleMesh",
-    "Box",
-    "Disk",
-    "Ring",
-    "Rectangle",
-    "RevSurface",
-    "BezierCurve",
-    "BsplineCurve",
     "Render",
 ];
 
@@ -169,7 +158,7 @@ impl<'a> Cursor<'a> {
         let mut message = format!("unknown keyword '{}' in {context}", key.text);
         if let Some(near) = did_you_mean(key.text, known) {
             message += &format!(" (did you mean '{near}'?)");
-        } else if BLOCK_KEYWORDS.contains(&key.text)
+        } else if (BLOCK_KEYWORDS.contains(&key.text) || OBJECTS.contains(&key.text))
             && self.peek().is_some_and(|t| t.kind == Kind::Open)
         {
             message += &format!(" ({} does not belong here; is a '}}' missing?)", key.text);

@@ -25,7 +25,7 @@ use super::transform::{STEPS, step};
 use crate::scene::{Object, Shape};
 
 /// The object keywords.
-const OBJECTS: &[&str] = &[
+pub(super) const OBJECTS: &[&str] = &[
     "Group",
     "Transform",
     "Sphere",

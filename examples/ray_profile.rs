@@ -1,0 +1,106 @@
+//! A fixed workload for profiling the exact intersector: the benches' kind of
+//! random rays through a shape's bounding box (1024 of them, cycled), run
+//! `N` times, with the hit count and, with `--report`, what the intersector
+//! did per ray on average. Deterministic, so instruction counts compare
+//! across commits:
+//!
+//! ```sh
+//! cargo build --release --example ray_profile
+//! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
+//! ```
+//!
+//! `ray_profile [glass|vase] [N] [--perpendicular] [--report]`: the shape
+//! (default glass), the number of rays (default 100 000), rays perpendicular
+//! to the axis instead of in any direction, and the per-ray report.
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::Rng;
+use revolve::nalgebra::Vector3;
+use revolve::{BSpline, Bezier, Intersect, Ray, Revolution};
+
+/// One of the two profiled shapes.
+enum Shape {
+    Glass(Revolution<BSpline<2>>),
+    Vase(Revolution<Bezier<2>>),
+}
+
+fn main() -> Result<(), String> {
+    let mut shape = Shape::Glass(Revolution::new(common::wine_glass()));
+    let (mut n, mut perpendicular, mut report) = (100_000_usize, false, false);
+    for arg in std::env::args().skip(1) {
+        match arg.as_str() {
+            "glass" => shape = Shape::Glass(Revolution::new(common::wine_glass())),
+            "vase" => shape = Shape::Vase(Revolution::new(common::vase())),
+            "--perpendicular" => perpendicular = true,
+            "--report" => report = true,
+            count => {
+                n = count
+                    .parse()
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, a ray count, --perpendicular or --report"))?
+            }
+        }
+    }
+    let bounds = match &shape {
+        Shape::Glass(s) => s.bounds(),
+        Shape::Vase(s) => s.bounds(),
+    };
+    let mut rng = Rng(7);
+    let radius = 2.0 * bounds.extent().norm();
+    let rays: Vec<Ray> = (0..1024)
+        .map(|_| {
+            let target = rng.point_in(&bounds);
+            let mut dir: Vector3<f64> = rng.direction();
+            if perpendicular {
+                dir.y = 0.0;
+                if dir.norm() < 1e-3 {
+                    dir = Vector3::x();
+                }
+            }
+            Ray::new(target - dir * radius, dir)
+        })
+        .collect();
+    let mut hits = 0_usize;
+    // Spans entered, spans solved, roots, candidates, Newton iterations.
+    let mut totals = [0_u64; 5];
+    for i in 0..n {
+        let ray = &rays[i % rays.len()];
+        let hit = if report {
+            let (hit, r) = match &shape {
+                Shape::Glass(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
+                Shape::Vase(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
+            };
+            for (total, x) in totals.iter_mut().zip([
+                r.spans_entered,
+                r.spans_solved,
+                r.roots,
+                r.candidates,
+                r.iterations,
+            ]) {
+                *total += u64::from(x);
+            }
+            hit
+        } else {
+            match &shape {
+                Shape::Glass(s) => s.intersect(ray, 0.0, f64::INFINITY),
+                Shape::Vase(s) => s.intersect(ray, 0.0, f64::INFINITY),
+            }
+        };
+        hits += usize::from(hit.is_some());
+    }
+    println!("hits {hits} of {n} rays");
+    if report {
+        let names = [
+            "spans entered",
+            "spans solved",
+            "roots",
+            "candidates",
+            "Newton iterations",
+        ];
+        for (name, total) in names.iter().zip(totals) {
+            println!("{name} per ray: {:.2}", total as f64 / n.max(1) as f64);
+        }
+    }
+    Ok(())
+}
