@@ -184,6 +184,97 @@ fn benches(c: &mut Criterion) {
         })
     });
     group.finish();
+
+    bench_cylinder_floor(c);
+}
+
+/// Radius and height of the floor reference's cylinder.
+const CYLINDER: (f64, f64) = (1.0, 2.0);
+
+/// The open cylinder `x² + z² = R²`, `0 ≤ y ≤ H`, in closed form, with every
+/// output the exact intersector gives (t, point, unit normal, `(u, v)` in the
+/// contract's parametrization `(R cos v, H u, −R sin v)`): what the simplest
+/// surface of revolution costs with no spline at all.
+#[inline]
+fn closed_form_cylinder(
+    ray: &Ray,
+    t_max: f64,
+) -> Option<(f64, Point3<f64>, Vector3<f64>, f64, f64)> {
+    let (r, h) = CYLINDER;
+    let (o, d) = (ray.origin, ray.dir);
+    let a = d.x * d.x + d.z * d.z;
+    let b = o.x * d.x + o.z * d.z;
+    let c = o.x * o.x + o.z * o.z - r * r;
+    let disc = b * b - a * c;
+    if a == 0.0 || disc < 0.0 {
+        return None;
+    }
+    // The root without cancellation, and its partner from the product.
+    let q = -(b + b.signum() * disc.sqrt());
+    let (t0, t1) = (q / a, c / q);
+    let (t0, t1) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
+    for t in [t0, t1] {
+        let p = o + d * t;
+        if t > 0.0 && t < t_max && (0.0..=h).contains(&p.y) {
+            let v = (-p.z).atan2(p.x).rem_euclid(std::f64::consts::TAU);
+            // The contract orients the normal as ∂S/∂u × ∂S/∂v: inward here.
+            let normal = Vector3::new(-p.x / r, 0.0, -p.z / r);
+            return Some((t, p, normal, p.y / h, v));
+        }
+    }
+    None
+}
+
+/// The floor: the cylinder of [`CYLINDER`] in closed form and through the
+/// exact intersector (a degree-1 profile), on the same random rays. The
+/// set-up checks that both give the same hits.
+fn bench_cylinder_floor(c: &mut Criterion) {
+    let (r, h) = CYLINDER;
+    let profile = revolve::Bezier::new(vec![
+        revolve::nalgebra::Point2::new(r, 0.0),
+        revolve::nalgebra::Point2::new(r, h),
+    ])
+    .expect("valid cylinder profile");
+    let cylinder = Revolution::new(profile);
+    let rays = box_rays(&cylinder.bounds(), false, 5);
+    let mut hits = 0;
+    for ray in &rays {
+        let exact = cylinder.intersect(ray, 0.0, f64::INFINITY);
+        let closed = closed_form_cylinder(ray, f64::INFINITY);
+        match (exact, closed) {
+            (None, None) => {}
+            (Some(e), Some((t, p, n, u, v))) => {
+                hits += 1;
+                let agree = (e.t - t).abs() <= 1e-12 * t.max(1.0)
+                    && (e.point - p).norm() <= 1e-12 * h
+                    && (e.normal.into_inner() - n).norm() <= 1e-12
+                    && (e.uv.0 - u).abs() <= 1e-12
+                    && (e.uv.1 - v).abs() <= 1e-12;
+                assert!(
+                    agree,
+                    "closed form and exact differ on {ray:?}: {e:?} vs {t} {p} {n} {u} {v}"
+                );
+            }
+            (e, cf) => panic!("closed form and exact disagree on {ray:?}: {e:?} vs {cf:?}"),
+        }
+    }
+    eprintln!("cylinder: {hits} of {N_RAYS} rays hit (closed form and exact agree)");
+    let mut group = c.benchmark_group("intersect_cylinder");
+    let mut i = 0;
+    group.bench_function(BenchmarkId::new("closed_form", "random"), |bench| {
+        bench.iter(|| {
+            i = (i + 1) & MASK;
+            closed_form_cylinder(black_box(&rays[i]), f64::INFINITY)
+        })
+    });
+    let mut i = 0;
+    group.bench_function(BenchmarkId::new("exact", "random"), |bench| {
+        bench.iter(|| {
+            i = (i + 1) & MASK;
+            black_box(&cylinder).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
+        })
+    });
+    group.finish();
 }
 
 criterion_group! {

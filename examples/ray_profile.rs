@@ -9,7 +9,7 @@
 //! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
 //! ```
 //!
-//! `ray_profile [glass|vase] [N] [--perpendicular] [--report]`: the shape
+//! `ray_profile [glass|vase|cylinder] [N] [--perpendicular] [--report]`: the shape
 //! (default glass), the number of rays (default 100 000), rays perpendicular
 //! to the axis instead of in any direction, and the per-ray report.
 
@@ -17,13 +17,15 @@
 mod common;
 
 use common::Rng;
-use revolve::nalgebra::Vector3;
+use revolve::nalgebra::{Point2, Vector3};
 use revolve::{BSpline, Bezier, Intersect, Ray, Revolution};
 
-/// One of the two profiled shapes.
+/// One of the profiled shapes.
 enum Shape {
     Glass(Revolution<BSpline<2>>),
-    Vase(Revolution<Bezier<2>>),
+    /// The vase, or the cylinder of radius 1 and height 2 (a degree-1
+    /// profile: the floor of what the intersector's machinery costs).
+    Bezier(Revolution<Bezier<2>>),
 }
 
 fn main() -> Result<(), String> {
@@ -32,19 +34,23 @@ fn main() -> Result<(), String> {
     for arg in std::env::args().skip(1) {
         match arg.as_str() {
             "glass" => shape = Shape::Glass(Revolution::new(common::wine_glass())),
-            "vase" => shape = Shape::Vase(Revolution::new(common::vase())),
+            "vase" => shape = Shape::Bezier(Revolution::new(common::vase())),
+            "cylinder" => {
+                let wall = vec![Point2::new(1.0, 0.0), Point2::new(1.0, 2.0)];
+                shape = Shape::Bezier(Revolution::new(Bezier::new(wall).map_err(|e| e.to_string())?))
+            }
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
             count => {
                 n = count
                     .parse()
-                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, a ray count, --perpendicular or --report"))?
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, a ray count, --perpendicular or --report"))?
             }
         }
     }
     let bounds = match &shape {
         Shape::Glass(s) => s.bounds(),
-        Shape::Vase(s) => s.bounds(),
+        Shape::Bezier(s) => s.bounds(),
     };
     let mut rng = Rng(7);
     let radius = 2.0 * bounds.extent().norm();
@@ -69,7 +75,7 @@ fn main() -> Result<(), String> {
         let hit = if report {
             let (hit, r) = match &shape {
                 Shape::Glass(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
-                Shape::Vase(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
+                Shape::Bezier(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
             };
             for (total, x) in totals.iter_mut().zip([
                 r.spans_entered,
@@ -84,7 +90,7 @@ fn main() -> Result<(), String> {
         } else {
             match &shape {
                 Shape::Glass(s) => s.intersect(ray, 0.0, f64::INFINITY),
-                Shape::Vase(s) => s.intersect(ray, 0.0, f64::INFINITY),
+                Shape::Bezier(s) => s.intersect(ray, 0.0, f64::INFINITY),
             }
         };
         hits += usize::from(hit.is_some());
