@@ -2,7 +2,11 @@
 //! Newton intersector (patch-tree depths 6 and 10) on a vase (one
 //! cubic Bézier) and a wine glass (25-point cubic uniform B-spline), against a
 //! Möller–Trumbore ray–triangle test in the same run, so the headline is the
-//! cost of one revolution intersection in triangle tests.
+//! cost of one revolution intersection in triangle tests. The floor: an
+//! open cylinder intersected in closed form (a quadratic) and by the exact
+//! intersector (as a degree-1 profile), on the same rays, with the same
+//! outputs (checked to agree): what the simplest surface of revolution costs
+//! without splines, and what the exact intersector's machinery costs on it.
 //!
 //! Each measured iteration is ONE ray from a precomputed set of 1024,
 //! cycled: the median reads as time per ray. Ray sets:
@@ -24,9 +28,9 @@ use std::time::Duration;
 
 use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use revolve::nalgebra::{Point3, Vector3};
+use revolve::nalgebra::{Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BoundedSurface, Curve, Intersect, NewtonIntersector, Ray, Revolution, Surface,
+    Aabb, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution, Surface,
 };
 
 const N_RAYS: usize = 1024;
@@ -196,10 +200,7 @@ const CYLINDER: (f64, f64) = (1.0, 2.0);
 /// contract's parametrization `(R cos v, H u, −R sin v)`): what the simplest
 /// surface of revolution costs with no spline at all.
 #[inline]
-fn closed_form_cylinder(
-    ray: &Ray,
-    t_max: f64,
-) -> Option<(f64, Point3<f64>, Vector3<f64>, f64, f64)> {
+fn closed_form_cylinder(ray: &Ray, t_max: f64) -> Option<Hit> {
     let (r, h) = CYLINDER;
     let (o, d) = (ray.origin, ray.dir);
     let a = d.x * d.x + d.z * d.z;
@@ -218,8 +219,14 @@ fn closed_form_cylinder(
         if t > 0.0 && t < t_max && (0.0..=h).contains(&p.y) {
             let v = (-p.z).atan2(p.x).rem_euclid(std::f64::consts::TAU);
             // The contract orients the normal as ∂S/∂u × ∂S/∂v: inward here.
-            let normal = Vector3::new(-p.x / r, 0.0, -p.z / r);
-            return Some((t, p, normal, p.y / h, v));
+            let normal = Unit::new_unchecked(Vector3::new(-p.x / r, 0.0, -p.z / r));
+            let uv = (p.y / h, v);
+            return Some(Hit {
+                t,
+                point: p,
+                normal,
+                uv,
+            });
         }
     }
     None
@@ -243,16 +250,16 @@ fn bench_cylinder_floor(c: &mut Criterion) {
         let closed = closed_form_cylinder(ray, f64::INFINITY);
         match (exact, closed) {
             (None, None) => {}
-            (Some(e), Some((t, p, n, u, v))) => {
+            (Some(e), Some(c)) => {
                 hits += 1;
-                let agree = (e.t - t).abs() <= 1e-12 * t.max(1.0)
-                    && (e.point - p).norm() <= 1e-12 * h
-                    && (e.normal.into_inner() - n).norm() <= 1e-12
-                    && (e.uv.0 - u).abs() <= 1e-12
-                    && (e.uv.1 - v).abs() <= 1e-12;
+                let agree = (e.t - c.t).abs() <= 1e-12 * c.t.max(1.0)
+                    && (e.point - c.point).norm() <= 1e-12 * h
+                    && (e.normal.into_inner() - c.normal.into_inner()).norm() <= 1e-12
+                    && (e.uv.0 - c.uv.0).abs() <= 1e-12
+                    && (e.uv.1 - c.uv.1).abs() <= 1e-12;
                 assert!(
                     agree,
-                    "closed form and exact differ on {ray:?}: {e:?} vs {t} {p} {n} {u} {v}"
+                    "closed form and exact differ on {ray:?}: {e:?} vs {c:?}"
                 );
             }
             (e, cf) => panic!("closed form and exact disagree on {ray:?}: {e:?} vs {cf:?}"),
