@@ -411,14 +411,15 @@ mod tests {
                 );
                 worst = worst.max(off / err);
             }
-            let size = (o.amax() * d.amax() + 3.0 * d.amax()).powi(2) + (2.0 * d.y).powi(2);
+            // |aᵢ|, |bᵢ| ≤ |o|·|d|·2 + 3|d|, |cᵢ| ≤ 2|d_y|.
+            let size = (2.0 * o.amax() * d.amax() + 3.0 * d.amax()).powi(2) + (2.0 * d.y).powi(2);
             assert!(
                 err <= 1e-13 * size,
                 "bound {err:e} for terms of size {size:e}"
             );
         }
-        // The bound is no wider than it needs to be by more than a few
-        // hundred times (it is a worst case over all roundings).
+        // The bound is no more than a thousand times the worst error seen
+        // (it is a worst case over all roundings; here a quarter is used).
         assert!(worst > 1e-3, "largest error only {worst:e} of the bound");
     }
 }
