@@ -192,8 +192,11 @@ fn benches(c: &mut Criterion) {
     bench_cylinder_floor(c);
 }
 
-/// Radius and height of the floor reference's cylinder.
-const CYLINDER: (f64, f64) = (1.0, 2.0);
+/// Radius and height of [`common::CYLINDER`].
+fn cylinder_size() -> (f64, f64) {
+    let [(r, _), (_, h)] = common::CYLINDER;
+    (r, h)
+}
 
 /// The open cylinder `x² + z² = R²`, `0 ≤ y ≤ H`, in closed form, with every
 /// output the exact intersector gives (t, point, unit normal, `(u, v)` in the
@@ -201,7 +204,7 @@ const CYLINDER: (f64, f64) = (1.0, 2.0);
 /// surface of revolution costs with no spline at all.
 #[inline]
 fn closed_form_cylinder(ray: &Ray, t_max: f64) -> Option<Hit> {
-    let (r, h) = CYLINDER;
+    let (r, h) = cylinder_size();
     let (o, d) = (ray.origin, ray.dir);
     let a = d.x * d.x + d.z * d.z;
     let b = o.x * d.x + o.z * d.z;
@@ -232,17 +235,12 @@ fn closed_form_cylinder(ray: &Ray, t_max: f64) -> Option<Hit> {
     None
 }
 
-/// The floor: the cylinder of [`CYLINDER`] in closed form and through the
+/// The floor: the cylinder of [`common::CYLINDER`] in closed form and through the
 /// exact intersector (a degree-1 profile), on the same random rays. The
 /// set-up checks that both give the same hits.
 fn bench_cylinder_floor(c: &mut Criterion) {
-    let (r, h) = CYLINDER;
-    let profile = revolve::Bezier::new(vec![
-        revolve::nalgebra::Point2::new(r, 0.0),
-        revolve::nalgebra::Point2::new(r, h),
-    ])
-    .expect("valid cylinder profile");
-    let cylinder = Revolution::new(profile);
+    let (_, h) = cylinder_size();
+    let cylinder = common::bezier(&common::CYLINDER);
     let rays = box_rays(&cylinder.bounds(), false, 5);
     let mut hits = 0;
     for ray in &rays {

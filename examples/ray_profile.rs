@@ -17,7 +17,7 @@
 mod common;
 
 use common::Rng;
-use revolve::nalgebra::{Point2, Vector3};
+use revolve::nalgebra::Vector3;
 use revolve::{BSpline, Bezier, Intersect, Ray, Revolution};
 
 /// One of the profiled shapes.
@@ -35,10 +35,7 @@ fn main() -> Result<(), String> {
         match arg.as_str() {
             "glass" => shape = Shape::Glass(Revolution::new(common::wine_glass())),
             "vase" => shape = Shape::Bezier(Revolution::new(common::vase())),
-            "cylinder" => {
-                let wall = vec![Point2::new(1.0, 0.0), Point2::new(1.0, 2.0)];
-                shape = Shape::Bezier(Revolution::new(Bezier::new(wall).map_err(|e| e.to_string())?))
-            }
+            "cylinder" => shape = Shape::Bezier(common::bezier(&common::CYLINDER)),
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
             count => {

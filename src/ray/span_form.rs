@@ -394,7 +394,6 @@ mod tests {
                     Dd::from(d.y).mul(Dd::from(xs[i])),
                 )
             };
-            let binomial = |n: usize, k: usize| crate::bernstein::binomial(n, k);
             for (k, &fk) in f.iter().enumerate() {
                 let mut exact = Dd::from(0.0);
                 for i in k.saturating_sub(n)..=k.min(n) {

@@ -4,8 +4,9 @@
 //! `#[path = "../tests/common/mod.rs"] mod common;`. Each includer uses a
 //! different subset, hence `allow(dead_code)`.
 //!
-//! - Profiles: the course wine glass ([`GLASS`], [`wine_glass`]) and a cubic
-//!   Bézier vase ([`VASE`], [`vase`]), and small constructors.
+//! - Profiles: the course wine glass ([`GLASS`], [`wine_glass`]), a cubic
+//!   Bézier vase ([`VASE`], [`vase`]), a cylinder's wall ([`CYLINDER`]), and
+//!   small constructors.
 //! - [`Rng`]: a deterministic SplitMix64 generator.
 //! - Hit checks: [`kappa`], [`t_tolerance`], [`check_hit`].
 //! - [`CountingAllocator`] and [`allocations_in`]: per-thread allocation
@@ -57,6 +58,10 @@ pub const GLASS: [(f64, f64); 25] = [
 
 /// A vase as one cubic Bézier.
 pub const VASE: [(f64, f64); 4] = [(0.6, -1.0), (1.6, -0.4), (-0.2, 0.6), (0.5, 1.0)];
+
+/// An open cylinder's wall, radius 1 and height 2, as a degree-1 profile
+/// (the benches' and the profiler's floor: it has a closed form).
+pub const CYLINDER: [(f64, f64); 2] = [(1.0, 0.0), (1.0, 2.0)];
 
 /// The points `(x, y)` as `Point2`s.
 pub fn points(p: &[(f64, f64)]) -> Vec<Point2<f64>> {
