@@ -5,6 +5,7 @@
 //! the caller's normalization convention, and `t_min`/`t_max` are in the same
 //! units.
 
+mod meridian_cells;
 pub mod newton;
 pub(crate) mod revolution;
 mod span_form;

@@ -21,7 +21,11 @@
 //!
 //! Spans are culled by their height and radius ranges and visited in order of
 //! where the ray enters their bounding cylinder; the search stops once the
-//! best hit is nearer than the next span.
+//! best hit is nearer than the next span. Which spans a ray tests at all is
+//! looked up in a table built once per surface
+//! ([`MeridianCells`]): from the ray's distance from the axis, the height of
+//! its closest approach and its angle with the axis, to the spans a line
+//! like it can meet.
 //!
 //! Spans of degree ≤ 5 are worked on as fixed-size arrays
 //! ([`span_form`](super::span_form)): the polynomial, the root decision, the
@@ -29,12 +33,17 @@
 //! decided by [`quick_roots`] (no root, or one certain sign change and its
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
+use super::meridian_cells::{Cell, MeridianCells, SpanBox};
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::TAU;
+
+/// Profiles of more spans than this get no [`MeridianCells`] (its masks and
+/// its construction grow with cells × spans); they cull by groups alone.
+const MAX_CELL_SPANS: usize = 1024;
 
 /// Spans visited in sorted order; more than this are visited after, unsorted.
 const SORTED_SPANS: usize = 16;
@@ -130,6 +139,9 @@ pub(crate) struct SpanTable {
     /// Runs of [`group_size`] consecutive spans with their joint ranges: a
     /// ray that misses a group's cylinder skips its spans' tests.
     groups: Vec<Group>,
+    /// The spans each kind of line can meet (profiles of two spans or more,
+    /// up to [`MAX_CELL_SPANS`]); rays it cannot place use the groups.
+    cells: Option<MeridianCells>,
     /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
     xs: Vec<f64>,
     ys: Vec<f64>,
@@ -306,7 +318,11 @@ impl SpanTable {
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
         let domain = (table[0].u.0, table[table.len() - 1].u.1);
         let group = group_size(table.len());
+        let boxes: Vec<SpanBox> = table.iter().map(|s| SpanBox { y: s.y, r: s.r }).collect();
+        let cells = (table.len() > 1 && table.len() <= MAX_CELL_SPANS && scale > 0.0)
+            .then(|| MeridianCells::new(&boxes, scale));
         Some(SpanTable {
+            cells,
             domain,
             degree,
             groups: table
@@ -361,25 +377,46 @@ impl SpanTable {
         let mut order = [(0.0_f64, 0_u32); SORTED_SPANS];
         let mut sorted = 0;
         let mut overflow = false;
-        for group in &self.groups {
-            if span_entry(&group.bounds, &q, t_floor, t_best).is_none() {
-                continue;
+        let mut consider = |k: usize, t_best: f64| {
+            let Some(entry) = span_entry(&self.spans[k], &q, t_floor, t_best) else {
+                return;
+            };
+            report.spans_entered += 1;
+            if sorted < SORTED_SPANS {
+                let mut i = sorted;
+                while i > 0 && order[i - 1].0 > entry {
+                    order[i] = order[i - 1];
+                    i -= 1;
+                }
+                order[i] = (entry, k as u32);
+                sorted += 1;
+            } else {
+                overflow = true;
             }
-            for k in group.first..group.end {
-                let Some(entry) = span_entry(&self.spans[k], &q, t_floor, t_best) else {
-                    continue;
-                };
-                report.spans_entered += 1;
-                if sorted < SORTED_SPANS {
-                    let mut i = sorted;
-                    while i > 0 && order[i - 1].0 > entry {
-                        order[i] = order[i - 1];
-                        i -= 1;
+        };
+        let cell = match &self.cells {
+            Some(cells) => cells.classify(q.o, d, dn, q.accept),
+            None => Cell::Outside,
+        };
+        match cell {
+            Cell::Miss => return None,
+            Cell::Spans(mask) => {
+                for (w, &word) in mask.iter().enumerate() {
+                    let mut bits = word;
+                    while bits != 0 {
+                        consider(w * 64 + bits.trailing_zeros() as usize, t_best);
+                        bits &= bits - 1;
                     }
-                    order[i] = (entry, k as u32);
-                    sorted += 1;
-                } else {
-                    overflow = true;
+                }
+            }
+            Cell::Outside => {
+                for group in &self.groups {
+                    if span_entry(&group.bounds, &q, t_floor, t_best).is_none() {
+                        continue;
+                    }
+                    for k in group.first..group.end {
+                        consider(k, t_best);
+                    }
                 }
             }
         }
