@@ -86,7 +86,8 @@ pub(super) struct MeridianCells {
 }
 
 /// One span's box as the table sees it: heights `y` and distances from
-/// the axis `r` (padded by the caller).
+/// the axis `r`, as the span's control points bound them (the table adds
+/// its own padding).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct SpanBox {
     pub(super) y: (f64, f64),
