@@ -127,8 +127,8 @@ impl MeridianCells {
         let words = boxes.len().div_ceil(64);
         let mut masks = vec![0_u64; SLOPE_CELLS * HEIGHT_CELLS * RHO_CELLS * words];
         let mut heights = [(0.0, 0.0); SLOPE_CELLS];
+        let c_cell = C_MAX / SLOPE_CELLS as f64;
         for (k, height) in heights.iter_mut().enumerate() {
-            let c_cell = C_MAX / SLOPE_CELLS as f64;
             let c0 = (k as f64 * c_cell - SLOPE_MARGIN).max(0.0);
             let c1 = ((k + 1) as f64 * c_cell + SLOPE_MARGIN).min(1.0);
             // g² over the cell: largest at its least c.

@@ -377,7 +377,8 @@ impl SpanTable {
         let mut order = [(0.0_f64, 0_u32); SORTED_SPANS];
         let mut sorted = 0;
         let mut overflow = false;
-        let mut consider = |k: usize, t_best: f64| {
+        // Before any span is solved, `t_best` is still `t_max`.
+        let mut consider = |k: usize| {
             let Some(entry) = span_entry(&self.spans[k], &q, t_floor, t_best) else {
                 return;
             };
@@ -404,7 +405,7 @@ impl SpanTable {
                 for (w, &word) in mask.iter().enumerate() {
                     let mut bits = word;
                     while bits != 0 {
-                        consider(w * 64 + bits.trailing_zeros() as usize, t_best);
+                        consider(w * 64 + bits.trailing_zeros() as usize);
                         bits &= bits - 1;
                     }
                 }
@@ -415,7 +416,7 @@ impl SpanTable {
                         continue;
                     }
                     for k in group.first..group.end {
-                        consider(k, t_best);
+                        consider(k);
                     }
                 }
             }
