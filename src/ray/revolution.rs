@@ -55,7 +55,8 @@ use std::f64::consts::TAU;
 /// its construction grow with cells × spans); they cull by groups alone.
 const MAX_CELL_SPANS: usize = 1024;
 
-/// Spans visited in sorted order; more than this are visited after, unsorted.
+/// Spans visited nearest first; more than this are visited after, in
+/// profile order.
 const SORTED_SPANS: usize = 16;
 
 /// Root pieces narrower than this (in a span's parameter) are handed to
@@ -456,12 +457,7 @@ impl SpanTable {
             };
             report.spans_entered += 1;
             if sorted < SORTED_SPANS {
-                let mut i = sorted;
-                while i > 0 && order[i - 1].0 > entry {
-                    order[i] = order[i - 1];
-                    i -= 1;
-                }
-                order[i] = (entry, k as u32 | if one_root { ONE_ROOT } else { 0 });
+                order[sorted] = (entry, k as u32 | if one_root { ONE_ROOT } else { 0 });
                 sorted += 1;
             } else {
                 overflow = true;
@@ -504,10 +500,21 @@ impl SpanTable {
                 }
             }
         }
-        for &(entry, tag) in &order[..sorted] {
-            if entry >= t_best {
-                break;
+        // Nearest entry first, while it is below the best hit: each time the
+        // least entry left, found by selects rather than branches on the
+        // data (sorting the spans as they came mispredicted about two
+        // branches a ray). A visited span's entry becomes infinite.
+        loop {
+            let (mut pick, mut least) = (usize::MAX, t_best);
+            for (i, &(entry, _)) in order[..sorted].iter().enumerate() {
+                let take = !(entry >= least);
+                least = if take { entry } else { least };
+                pick = if take { i } else { pick };
             }
+            let Some(&mut (ref mut entry, tag)) = order.get_mut(pick) else {
+                break;
+            };
+            *entry = f64::INFINITY;
             let k = (tag & !ONE_ROOT) as usize;
             if tag & ONE_ROOT != 0 {
                 self.one_root_hits(k, &q, t_floor, &mut t_best, &mut best, report);
@@ -1079,11 +1086,10 @@ fn monotone_root<P: SpanForm>(span: P, q: &Query) -> f64 {
         if f == 0.0 {
             return s;
         }
-        if (f > 0.0) == rising {
-            hi = s;
-        } else {
-            lo = s;
-        }
+        // Selects, not branches: which side s is on follows no pattern.
+        let past = (f > 0.0) == rising;
+        hi = if past { s } else { hi };
+        lo = if past { lo } else { s };
         let slope = 2.0 * ((a * d.x + b * d.z) * p.dy - dy2 * p.x * p.dx);
         let newton = s - f / slope;
         let next = if newton > lo && newton < hi {
@@ -1180,13 +1186,8 @@ fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> 
     let outer2 = outer * outer;
     // (Plain comparisons rather than `clamp`/`max`: no NaN reaches here,
     // and this loop runs for every span.)
-    let closest = if q.t_closest < lo {
-        lo
-    } else if q.t_closest > hi {
-        hi
-    } else {
-        q.t_closest
-    };
+    let closest = if q.t_closest < lo { lo } else { q.t_closest };
+    let closest = if closest > hi { hi } else { closest };
     if r2(closest) > outer2 {
         return None;
     }
