@@ -49,6 +49,7 @@ use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
+use std::cmp::Ordering::Less;
 use std::f64::consts::TAU;
 
 /// Profiles of more spans than this get no [`MeridianCells`] (its masks and
@@ -507,7 +508,8 @@ impl SpanTable {
         loop {
             let (mut pick, mut least) = (usize::MAX, t_best);
             for (i, &(entry, _)) in order[..sorted].iter().enumerate() {
-                let take = !(entry >= least);
+                // Less, or unordered (a NaN is visited, never passed over).
+                let take = matches!(entry.partial_cmp(&least), Some(Less) | None);
                 least = if take { entry } else { least };
                 pick = if take { i } else { pick };
             }
