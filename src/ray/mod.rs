@@ -5,6 +5,8 @@
 //! the caller's normalization convention, and `t_min`/`t_max` are in the same
 //! units.
 
+#[cfg(test)]
+mod double_double;
 mod meridian_cells;
 pub mod newton;
 pub(crate) mod revolution;

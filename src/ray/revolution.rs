@@ -1314,4 +1314,55 @@ mod tests {
             "the table decided spans on only {decided} rays"
         );
     }
+
+    /// The hit function at control points is within [`EndValues`]' bound
+    /// of its value in double-double arithmetic, for random rays and
+    /// points, origins up to 1e6 away and rays aimed at the point itself
+    /// (where `A² + B²` and `(d_y x)²` cancel); and the bound is not
+    /// vacuous (a worst case, but no more than a thousand times the worst
+    /// error seen).
+    #[test]
+    fn end_values_are_within_their_rounding_bound() {
+        use super::super::double_double::Dd;
+        let mut state = 0x5851_f42d_4c95_7f2d_u64;
+        let mut worst = 0.0_f64;
+        let curve = profile(&mut state, 10, 1.0);
+        let spans = curve.bezier_spans().expect("spans");
+        let table = SpanTable::new(&spans).expect("one degree");
+        for case in 0..20_000 {
+            let k = case % table.spans.len();
+            let point = table.end_points(k)[case / 7 % 2];
+            let far = [1.0, 1e3, 1e6][case % 3];
+            let pick = |state: &mut u64| 2.0 * unit(state) - 1.0;
+            let o = Vector3::new(pick(&mut state), pick(&mut state), pick(&mut state)) * far;
+            let d = if case % 2 == 0 {
+                // At the point's circle, at a random angle.
+                let angle = 6.0 * unit(&mut state);
+                Vector3::new(point.0 * angle.cos(), point.1, point.0 * angle.sin()) - o
+            } else {
+                Vector3::new(pick(&mut state), pick(&mut state), pick(&mut state))
+            };
+            if d.y == 0.0 {
+                continue;
+            }
+            let q = Query::new(o, d, &Tolerance::default(), table.scale);
+            let ends = EndValues::new(&q, &table);
+            let got = ends.value(point);
+            let dd = Dd::from;
+            let h = dd(point.1).add(dd(-o.y));
+            let a = dd(o.x).mul(dd(d.y)).add(h.mul(dd(d.x)));
+            let b = dd(o.z).mul(dd(d.y)).add(h.mul(dd(d.z)));
+            let c = dd(d.y).mul(dd(point.0));
+            let exact = a.mul(a).add(b.mul(b)).add(c.mul(c).neg());
+            let off = ((got - exact.0) - exact.1).abs();
+            assert!(
+                off <= ends.err,
+                "f = {got} is {off:e} off {}, bound {:e}",
+                exact.value(),
+                ends.err
+            );
+            worst = worst.max(off / ends.err);
+        }
+        assert!(worst > 1e-3, "largest error only {worst:e} of the bound");
+    }
 }

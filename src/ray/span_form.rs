@@ -238,6 +238,7 @@ fn products_into(
 
 #[cfg(test)]
 mod tests {
+    use super::super::double_double::Dd;
     use super::*;
     use crate::Tolerance;
     use crate::bernstein::{bernstein_sum, binomial};
@@ -312,45 +313,6 @@ mod tests {
                     "f({s}) = {got} but {direct}"
                 );
             }
-        }
-    }
-
-    /// A double-double number `hi + lo` (about 106 bits): the reference
-    /// arithmetic for the rounding bound.
-    #[derive(Debug, Clone, Copy)]
-    struct Dd(f64, f64);
-
-    impl Dd {
-        fn from(x: f64) -> Self {
-            Dd(x, 0.0)
-        }
-
-        fn add(self, o: Dd) -> Dd {
-            // Knuth's two-sum on the high parts, then the low parts.
-            let s = self.0 + o.0;
-            let v = s - self.0;
-            let e = (self.0 - (s - v)) + (o.0 - v) + self.1 + o.1;
-            let hi = s + e;
-            Dd(hi, e - (hi - s))
-        }
-
-        fn neg(self) -> Dd {
-            Dd(-self.0, -self.1)
-        }
-
-        fn mul(self, o: Dd) -> Dd {
-            // The exact product of the high parts by a fused multiply-add.
-            let p = self.0 * o.0;
-            let e = self.0.mul_add(o.0, -p) + self.0 * o.1 + self.1 * o.0;
-            let hi = p + e;
-            Dd(hi, e - (hi - p))
-        }
-
-        /// `n / m` for small integers (exact in `f64`), to double-double.
-        fn ratio(n: f64, m: f64) -> Dd {
-            let q = n / m;
-            let r = (-q).mul_add(m, n); // exact remainder
-            Dd(q, r / m)
         }
     }
 
