@@ -517,12 +517,8 @@ impl SpanTable {
                 break;
             };
             *entry = f64::INFINITY;
-            let k = (tag & !ONE_ROOT) as usize;
-            if tag & ONE_ROOT != 0 {
-                self.one_root_hits(k, &q, t_floor, &mut t_best, &mut best, report);
-            } else {
-                self.span_hits(k, &q, t_floor, &mut t_best, &mut best, report);
-            }
+            let (k, one_root) = ((tag & !ONE_ROOT) as usize, tag & ONE_ROOT != 0);
+            self.span_hits(k, &q, one_root, t_floor, &mut t_best, &mut best, report);
         }
         if overflow {
             for k in 0..self.spans.len() {
@@ -530,7 +526,7 @@ impl SpanTable {
                     .iter()
                     .any(|&(_, j)| (j & !ONE_ROOT) as usize == k)
                 {
-                    self.span_hits(k, &q, t_floor, &mut t_best, &mut best, report);
+                    self.span_hits(k, &q, false, t_floor, &mut t_best, &mut best, report);
                 }
             }
         }
@@ -541,32 +537,18 @@ impl SpanTable {
     ///
     /// The roots become candidates `(t, s)`; they are polished nearest first,
     /// and candidates whose guessed `t` is beyond the best hit so far (with
-    /// slack for the guess's error) are not polished at all.
+    /// slack for the guess's error) are not polished at all. A span known
+    /// to hold exactly one root (`one_root`: a monotonic hit function with
+    /// certainly opposite end values, [`EndRoots::One`]) has it found by
+    /// safeguarded Newton on the hit function itself and polished, without
+    /// forming the polynomial; should the polish not land within
+    /// [`ROOT_AGREEMENT`] of it, the span is solved in full.
+    #[allow(clippy::too_many_arguments)]
     fn span_hits(
         &self,
         k: usize,
         q: &Query,
-        t_floor: f64,
-        t_best: &mut f64,
-        best: &mut Option<LocalHit>,
-        report: &mut ExactReport,
-    ) {
-        report.spans_solved += 1;
-        let (xs, ys) = self.coeffs(k);
-        with_span_form!(xs, ys, |span| self
-            .hits_on(k, span, q, t_floor, t_best, best, report));
-    }
-
-    /// [`span_hits`](Self::span_hits) for a span known to hold exactly one
-    /// root (a monotonic hit function with certainly opposite end values,
-    /// [`EndRoots::One`]): the root is found by safeguarded Newton on the
-    /// hit function itself and polished, without forming the polynomial.
-    /// Should the polish not land within [`ROOT_AGREEMENT`] of it, the span
-    /// is solved in full.
-    fn one_root_hits(
-        &self,
-        k: usize,
-        q: &Query,
+        one_root: bool,
         t_floor: f64,
         t_best: &mut f64,
         best: &mut Option<LocalHit>,
@@ -575,7 +557,7 @@ impl SpanTable {
         report.spans_solved += 1;
         let (xs, ys) = self.coeffs(k);
         with_span_form!(xs, ys, |span| {
-            if !self.polish_one_root(k, span, q, t_floor, t_best, best, report) {
+            if !(one_root && self.polish_one_root(k, span, q, t_floor, t_best, best, report)) {
                 self.hits_on(k, span, q, t_floor, t_best, best, report);
             }
         });
@@ -1002,15 +984,45 @@ enum EndRoots {
     Unknown,
 }
 
-/// The hit function `f = A² + B² − (d_y x)²` of one ray (`d_y ≠ 0`, see
-/// the module docs) at control points, with a bound on its rounding there.
+/// The hit function `f = A² + B² − (d_y x)²` of one ray (see the module
+/// docs) at profile points.
 #[derive(Debug, Clone, Copy)]
-struct EndValues {
+struct HitFunction {
     o: Vector3<f64>,
     d: Vector3<f64>,
     /// `o_x d_y` and `o_z d_y`.
     oxdy: f64,
     ozdy: f64,
+}
+
+impl HitFunction {
+    #[inline(always)]
+    fn new(q: &Query) -> Self {
+        let (o, d) = (q.o, q.d);
+        HitFunction {
+            o,
+            d,
+            oxdy: o.x * d.y,
+            ozdy: o.z * d.y,
+        }
+    }
+
+    /// `f` at the profile point `(x, y)`, with `A` and `B` there.
+    #[inline(always)]
+    fn parts(&self, x: f64, y: f64) -> (f64, f64, f64) {
+        let h = y - self.o.y;
+        let a = self.oxdy + h * self.d.x;
+        let b = self.ozdy + h * self.d.z;
+        let c = self.d.y * x;
+        (a * a + b * b - c * c, a, b)
+    }
+}
+
+/// The hit function of one ray (`d_y ≠ 0`) at control points, with a bound
+/// on its rounding there.
+#[derive(Debug, Clone, Copy)]
+struct EndValues {
+    f: HitFunction,
     err: f64,
 }
 
@@ -1021,17 +1033,14 @@ impl EndValues {
     /// their squares to within `7ε m²` and `f` to within `9ε Σ m²`; the
     /// bound takes `16ε Σ m²`.
     fn new(q: &Query, table: &SpanTable) -> Self {
-        let (o, d) = (q.o, q.d);
-        let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
+        let f = HitFunction::new(q);
+        let (o, d) = (f.o, f.d);
         let reach = table.y_range.0.abs().max(table.y_range.1.abs()) + o.y.abs();
-        let ma = oxdy.abs() + reach * d.x.abs();
-        let mb = ozdy.abs() + reach * d.z.abs();
+        let ma = f.oxdy.abs() + reach * d.x.abs();
+        let mb = f.ozdy.abs() + reach * d.z.abs();
         let mc = d.y.abs() * table.r_max;
         EndValues {
-            o,
-            d,
-            oxdy,
-            ozdy,
+            f,
             err: 16.0 * f64::EPSILON * (ma * ma + mb * mb + mc * mc),
         }
     }
@@ -1039,11 +1048,7 @@ impl EndValues {
     /// `f` at the profile point `(x, y)`.
     #[inline(always)]
     fn value(&self, (x, y): (f64, f64)) -> f64 {
-        let h = y - self.o.y;
-        let a = self.oxdy + h * self.d.x;
-        let b = self.ozdy + h * self.d.z;
-        let c = self.d.y * x;
-        a * a + b * b - c * c
+        self.f.parts(x, y).0
     }
 
     /// What the end values at the span's end points `ends` say.
@@ -1068,13 +1073,9 @@ impl EndValues {
 /// step leaves it), until a step is below [`NEWTON_DONE`].
 #[inline(always)]
 fn monotone_root<P: SpanForm>(span: P, q: &Query) -> f64 {
-    let (o, d) = (q.o, q.d);
-    let (oxdy, ozdy, dy2) = (o.x * d.y, o.z * d.y, d.y * d.y);
-    let value = |x: f64, y: f64| {
-        let h = y - o.y;
-        let (a, b, c) = (oxdy + h * d.x, ozdy + h * d.z, d.y * x);
-        (a * a + b * b - c * c, a, b)
-    };
+    let hit = HitFunction::new(q);
+    let (d, dy2) = (q.d, q.d.y * q.d.y);
+    let value = |x: f64, y: f64| hit.parts(x, y);
     let (xs, ys) = (span.xs().coeffs(), span.ys().coeffs());
     let n = xs.len() - 1;
     let (f0, _, _) = value(xs[0], ys[0]);
@@ -1113,16 +1114,23 @@ fn monotone_root<P: SpanForm>(span: P, q: &Query) -> f64 {
 /// is; `None` when that range lies outside.
 #[inline]
 fn height_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> {
+    let (near, far) = height_slab(span, q);
+    let lo = t_floor - q.pad_t;
+    let enter = if near > lo { near } else { lo };
+    let leave = if far < t_best { far } else { t_best };
+    (enter <= leave).then_some(enter)
+}
+
+/// The `t` at which the ray (`d_y ≠ 0`) enters and leaves the span's
+/// height range padded by the position tolerance, in order.
+#[inline(always)]
+fn height_slab(span: &Span, q: &Query) -> (f64, f64) {
     let pad = q.accept;
     let (a, b) = (
         (span.y.0 - pad - q.o.y) * q.inv_dy,
         (span.y.1 + pad - q.o.y) * q.inv_dy,
     );
-    let (near, far) = if a < b { (a, b) } else { (b, a) };
-    let lo = t_floor - q.pad_t;
-    let enter = if near > lo { near } else { lo };
-    let leave = if far < t_best { far } else { t_best };
-    (enter <= leave).then_some(enter)
+    if a < b { (a, b) } else { (b, a) }
 }
 
 /// Where `o + t d` is at distance `|x|` from the axis: the roots of
@@ -1166,8 +1174,7 @@ fn span_entry(span: &Span, q: &Query, t_floor: f64, t_best: f64) -> Option<f64> 
             return None;
         }
     } else {
-        let (a, b) = ((y0 - o.y) * q.inv_dy, (y1 - o.y) * q.inv_dy);
-        let (near, far) = if a < b { (a, b) } else { (b, a) };
+        let (near, far) = height_slab(span, q);
         if near > lo {
             lo = near;
         }
