@@ -11,6 +11,7 @@ mod meridian_cells;
 pub mod newton;
 pub(crate) mod revolution;
 mod span_form;
+mod turn_angle;
 
 pub use revolution::ExactReport;
 

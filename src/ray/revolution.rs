@@ -45,12 +45,12 @@
 
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves};
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
+use super::turn_angle::turn_angle;
 use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
 use std::cmp::Ordering::Less;
-use std::f64::consts::TAU;
 
 /// Profiles of more spans than this get no [`MeridianCells`] (its masks and
 /// its construction grow with cells × spans); they cull by groups alone.
@@ -835,11 +835,7 @@ impl SpanTable {
         } else {
             (1.0, 0.0)
         };
-        // atan2 lies in [−π, π]: one turn added to the negative half is the
-        // Euclidean remainder (as `rem_euclid(TAU)`, which may round up to
-        // TAU itself), without its `fmod`.
-        let angle = sn.atan2(cs);
-        let theta = if angle < 0.0 { angle + TAU } else { angle } + 0.0; // no −0
+        let theta = turn_angle(sn, cs);
         let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
         Some(LocalHit {
             t,
