@@ -18,7 +18,7 @@
 //! steps: within two units in the last place of the result (the tests check
 //! this against `atan2` on ten million directions).
 
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
 /// `atan(i/8)` for `i = 0, …, 8`, as `(hi, lo)` with `hi` the double nearest
 /// and `lo` the remainder.
@@ -31,7 +31,7 @@ const ATAN_EIGHTHS: [(f64, f64); 9] = [
     (0.5585993153435624, -5.4556305485916264e-18),
     (0.6435011087932844, 1.5834785051444286e-17),
     (0.7188299996216245, -2.1478388444456983e-17),
-    (0.7853981633974483, 3.061616997868383e-17),
+    (FRAC_PI_4, 3.061616997868383e-17),
 ];
 
 /// The remainders `π/2 − FRAC_PI_2` and `π − PI`.
