@@ -10,6 +10,7 @@ mod double_double;
 mod meridian_cells;
 pub mod newton;
 pub(crate) mod revolution;
+mod select;
 mod span_form;
 mod turn_angle;
 

@@ -44,6 +44,7 @@
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves};
+use super::select::select;
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use super::turn_angle::turn_angle;
 use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
@@ -471,22 +472,22 @@ impl SpanTable {
         match cell {
             Cell::Miss => return None,
             Cell::Spans { listed, monotone } => {
+                // The monotonic spans and the others in two passes, so that
+                // no branch asks which kind each span is.
                 let ends = (q.d.y != 0.0).then(|| EndValues::new(&q, self));
                 for (w, (&word, &steady)) in listed.iter().zip(monotone).enumerate() {
-                    let mut bits = word;
-                    while bits != 0 {
-                        let k = w * 64 + bits.trailing_zeros() as usize;
-                        bits &= bits - 1;
-                        match ends {
-                            Some(ends) if steady >> (k % 64) & 1 == 1 => {
-                                match ends.roots(self.end_points(k)) {
-                                    EndRoots::None => {}
-                                    EndRoots::One => consider(k, true),
-                                    EndRoots::Unknown => consider(k, false),
-                                }
+                    let steady = if ends.is_some() { word & steady } else { 0 };
+                    if let Some(ends) = ends {
+                        for k in set_bits(steady, w) {
+                            match ends.roots(self.end_points(k)) {
+                                EndRoots::None => {}
+                                EndRoots::One => consider(k, true),
+                                EndRoots::Unknown => consider(k, false),
                             }
-                            _ => consider(k, false),
                         }
+                    }
+                    for k in set_bits(word & !steady, w) {
+                        consider(k, false);
                     }
                 }
             }
@@ -851,6 +852,18 @@ impl SpanTable {
     }
 }
 
+/// The indices `64 w + i` of the set bits `i` of `word`, lowest first.
+#[inline(always)]
+fn set_bits(mut word: u64, w: usize) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (word != 0).then(|| {
+            let i = word.trailing_zeros() as usize;
+            word &= word - 1;
+            w * 64 + i
+        })
+    })
+}
+
 /// Ray parameters to try for the root `s` of `span`: from the height when
 /// the ray is steep, else from the radius (both crossings), nearest the
 /// height's answer first.
@@ -1087,15 +1100,11 @@ fn monotone_root<P: SpanForm>(span: P, q: &Query) -> f64 {
         }
         // Selects, not branches: which side s is on follows no pattern.
         let past = (f > 0.0) == rising;
-        hi = if past { s } else { hi };
-        lo = if past { lo } else { s };
+        hi = select(past, s, hi);
+        lo = select(past, lo, s);
         let slope = 2.0 * ((a * d.x + b * d.z) * p.dy - dy2 * p.x * p.dx);
         let newton = s - f / slope;
-        let next = if newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
+        let next = select(newton > lo && newton < hi, newton, 0.5 * (lo + hi));
         let step = (next - s).abs();
         s = next;
         if step <= NEWTON_DONE {

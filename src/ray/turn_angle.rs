@@ -18,6 +18,7 @@
 //! steps: within two units in the last place of the result (the tests check
 //! this against `atan2` on ten million directions).
 
+use super::select::select;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
 /// `atan(i/8)` for `i = 0, …, 8`, as `(hi, lo)` with `hi` the double nearest
@@ -69,14 +70,6 @@ pub(super) fn turn_angle(sin: f64, cos: f64) -> f64 {
     // A `sin` of −0 counts as on the axis (θ = 0 or π), as `+ 0.0` turns a
     // −0 into 0.
     select(sin < 0.0, TAU - r, r + 0.0)
-}
-
-/// `if pick { a } else { b }` for two values already computed, by a mask
-/// rather than a branch.
-#[inline(always)]
-fn select(pick: bool, a: f64, b: f64) -> f64 {
-    let mask = u64::from(pick).wrapping_neg();
-    f64::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
 }
 
 #[cfg(test)]
