@@ -476,16 +476,20 @@ impl SpanTable {
                 // no branch asks which kind each span is.
                 let ends = (q.d.y != 0.0).then(|| EndValues::new(&q, self));
                 for (w, (&word, &steady)) in listed.iter().zip(monotone).enumerate() {
-                    let steady = if ends.is_some() { word & steady } else { 0 };
-                    if let Some(ends) = ends {
-                        for k in set_bits(steady, w) {
-                            match ends.roots(self.end_points(k)) {
-                                EndRoots::None => {}
-                                EndRoots::One => consider(k, true),
-                                EndRoots::Unknown => consider(k, false),
+                    let steady = match ends {
+                        Some(ends) => {
+                            let steady = word & steady;
+                            for k in set_bits(steady, w) {
+                                match ends.roots(self.end_points(k)) {
+                                    EndRoots::None => {}
+                                    EndRoots::One => consider(k, true),
+                                    EndRoots::Unknown => consider(k, false),
+                                }
                             }
+                            steady
                         }
-                    }
+                        None => 0,
+                    };
                     for k in set_bits(word & !steady, w) {
                         consider(k, false);
                     }

@@ -15,8 +15,8 @@
 //!
 //! `z − cᵢ` is exact (Sterbenz: `z` is within a factor of two of `cᵢ` for
 //! `i ≥ 1`), so the error is the few roundings of `z`, `w` and the octant
-//! steps: within two units in the last place of the result (the tests check
-//! this against `atan2` on ten million directions).
+//! steps: within two units in the last place of `atan2`'s result (the
+//! tests check this on ten million directions).
 
 use super::select::select;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
@@ -49,7 +49,7 @@ pub(super) fn turn_angle(sin: f64, cos: f64) -> f64 {
     let steep = a > b;
     let (num, den) = if steep { (b, a) } else { (a, b) };
     if den == 0.0 {
-        return if cos < 0.0 { PI } else { 0.0 };
+        return 0.0;
     }
     let z = num / den;
     // The nearest eighth (z ≤ 1, so i ≤ 8; a NaN would give 0).
