@@ -384,13 +384,7 @@ impl MeridianCells {
 mod tests {
     use super::*;
 
-    /// xorshift64: uniform in `[0, 1)`.
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::ray::test_unit::unit;
 
     /// Random boxes in `[0, scale] × [−scale, scale]` (radius × height),
     /// some touching the axis, some of zero height or zero radial width.

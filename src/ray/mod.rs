@@ -12,6 +12,8 @@ pub mod newton;
 pub(crate) mod revolution;
 mod select;
 mod span_form;
+#[cfg(test)]
+mod test_unit;
 mod turn_angle;
 
 pub use revolution::ExactReport;

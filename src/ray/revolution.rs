@@ -1233,13 +1233,7 @@ mod tests {
     use crate::{BSpline, Curve};
     use nalgebra::Point2;
 
-    /// xorshift64: uniform in `[0, 1)`.
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::ray::test_unit::unit;
 
     /// A clamped cubic B-spline profile of `count` points at size `scale`:
     /// radii in `[0, scale]` (the ends on the axis), heights rising with

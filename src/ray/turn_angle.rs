@@ -92,13 +92,7 @@ mod tests {
         }
     }
 
-    /// xorshift64: uniform in `[0, 1)`.
-    fn unit(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::ray::test_unit::unit;
 
     #[test]
     fn agrees_with_atan2_within_two_ulps() {
