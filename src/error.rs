@@ -117,6 +117,55 @@ pub enum Error {
         /// The smallest tolerance accepted for this object.
         min: f64,
     },
+    // -- Added for issue 16 by the lead: tolerances and profiles. --
+    /// A tolerance is larger than the solver accepts.
+    ToleranceTooLarge {
+        /// The tolerance that was given.
+        tolerance: f64,
+        /// The largest tolerance accepted.
+        max: f64,
+    },
+    /// An iteration cap is zero or larger than the solver accepts.
+    InvalidIterations {
+        /// The cap that was given.
+        max_iterations: u32,
+        /// The largest cap accepted.
+        max: u32,
+    },
+    /// A curve's domain is not a finite interval `(a, b)` with `a < b` (a
+    /// user's curve that breaks the [`Curve`](crate::Curve) contract).
+    InvalidDomain {
+        /// The start the curve reported.
+        start: f64,
+        /// The end the curve reported.
+        end: f64,
+    },
+    /// A curve returned a NaN or infinite point or derivative, or a
+    /// coordinate beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), at a
+    /// parameter inside its domain.
+    CurveNotFinite {
+        /// The parameter.
+        t: f64,
+    },
+    /// A curve's [Bézier spans](crate::Curve::bezier_spans) are empty, or
+    /// span `index` does not follow the previous one (its interval is empty,
+    /// not finite, or starts before the previous span ends).
+    SpansOutOfOrder {
+        /// Index of the offending span (0 when there are none).
+        index: usize,
+    },
+    /// A Bézier span's control point is NaN, infinite or beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    SpanPointNotFinite {
+        /// Index of the span.
+        span: usize,
+    },
+    /// A profile without Bézier spans could not be approximated within the
+    /// limit of pieces (it is not smooth enough, or not continuous).
+    ProfileTooRough {
+        /// The number of pieces tried.
+        pieces: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -207,6 +256,47 @@ impl fmt::Display for Error {
                  scale; use at least {}",
                 Num(tolerance),
                 Num(min)
+            ),
+            Error::ToleranceTooLarge { tolerance, max } => write!(
+                f,
+                "tolerance {} is larger than the largest accepted, {}",
+                Num(tolerance),
+                Num(max)
+            ),
+            Error::InvalidIterations {
+                max_iterations,
+                max,
+            } => write!(
+                f,
+                "iteration cap {max_iterations} is outside the accepted range 1 to {max}"
+            ),
+            Error::InvalidDomain { start, end } => write!(
+                f,
+                "the curve's domain ({}, {}) is not a finite interval with start < end",
+                Num(start),
+                Num(end)
+            ),
+            Error::CurveNotFinite { t } => write!(
+                f,
+                "the curve's point or derivative at t = {} is NaN, infinite or beyond the \
+                 supported magnitude {}",
+                Num(t),
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::SpansOutOfOrder { index } => write!(
+                f,
+                "the curve's Bézier spans are empty or out of order at span {index}: each \
+                 needs a finite, non-empty interval starting where the previous one ends or later"
+            ),
+            Error::SpanPointNotFinite { span } => write!(
+                f,
+                "Bézier span {span} has a NaN, infinite or too large control point (beyond {})",
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::ProfileTooRough { pieces } => write!(
+                f,
+                "the profile could not be approximated by {pieces} cubic pieces: is it \
+                 continuous and differentiable?"
             ),
         }
     }

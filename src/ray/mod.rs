@@ -8,7 +8,9 @@
 #[cfg(test)]
 mod double_double;
 mod meridian_cells;
+mod meridian_newton;
 pub mod newton;
+pub(crate) mod profile_refine;
 pub(crate) mod revolution;
 mod select;
 mod span_form;
@@ -20,7 +22,7 @@ pub use revolution::ExactReport;
 
 pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 
-use crate::Aabb;
+use crate::{Aabb, Error};
 use nalgebra::{Point3, Unit, Vector3};
 
 /// A ray `R(t) = origin + t·dir`, `t` in units of `|dir|`.
@@ -84,6 +86,27 @@ pub trait Intersect {
 /// hit point from the surface) relative to the object's scale (the largest
 /// absolute coordinate of its bounding box). The default, `4ε ≈ 8.9e-16`, is
 /// full double precision: solvers iterate until rounding stops them.
+///
+/// # Valid settings
+/// `relative` in [`MIN_RELATIVE`](Self::MIN_RELATIVE) `..=`
+/// [`MAX_RELATIVE`](Self::MAX_RELATIVE) and `max_iterations` in
+/// `1..=`[`MAX_ITERATIONS`](Self::MAX_ITERATIONS). [`Tolerance::new`] checks
+/// them; the fields are public, so every solver uses
+/// [`clamped`](Self::clamped), which moves any setting (NaN, infinite,
+/// negative, zero iterations) into that range. No setting can make a solver
+/// hang or return NaN.
+///
+/// ```
+/// use revolve::{Error, Tolerance};
+///
+/// let tol = Tolerance::new(1e-9, 16)?;
+/// assert_eq!(tol.relative, 1e-9);
+/// assert!(matches!(Tolerance::new(f64::NAN, 16), Err(Error::InvalidTolerance { .. })));
+/// assert!(matches!(Tolerance::new(0.5, 16), Err(Error::ToleranceTooLarge { .. })));
+/// // An unchecked setting is clamped where it is used.
+/// assert_eq!(Tolerance::relative(10.0).clamped().relative, Tolerance::MAX_RELATIVE);
+/// # Ok::<(), revolve::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerance {
     /// Target error relative to the object's scale.
@@ -102,11 +125,78 @@ impl Default for Tolerance {
 }
 
 impl Tolerance {
-    /// A tolerance with the given relative target and the default cap.
+    /// The smallest relative target, `ε`: below it no double-precision
+    /// solver can go.
+    pub const MIN_RELATIVE: f64 = f64::EPSILON;
+    /// The largest relative target, `1e-3`: a looser one would let the
+    /// secondary-ray margin (hits within the tolerance of the ray's start
+    /// are the start itself) swallow real hits.
+    pub const MAX_RELATIVE: f64 = 1e-3;
+    /// The largest iteration cap.
+    pub const MAX_ITERATIONS: u32 = 1000;
+
+    /// A checked tolerance.
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] for a `relative` that is NaN, infinite or
+    /// not positive; [`Error::ToleranceTooSmall`] below
+    /// [`MIN_RELATIVE`](Self::MIN_RELATIVE); [`Error::ToleranceTooLarge`]
+    /// above [`MAX_RELATIVE`](Self::MAX_RELATIVE);
+    /// [`Error::InvalidIterations`] for `max_iterations` of 0 or above
+    /// [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
+    pub fn new(relative: f64, max_iterations: u32) -> Result<Self, Error> {
+        if !(relative.is_finite() && relative > 0.0) {
+            return Err(Error::InvalidTolerance {
+                tolerance: relative,
+            });
+        }
+        if relative < Self::MIN_RELATIVE {
+            return Err(Error::ToleranceTooSmall {
+                tolerance: relative,
+                min: Self::MIN_RELATIVE,
+            });
+        }
+        if relative > Self::MAX_RELATIVE {
+            return Err(Error::ToleranceTooLarge {
+                tolerance: relative,
+                max: Self::MAX_RELATIVE,
+            });
+        }
+        if max_iterations == 0 || max_iterations > Self::MAX_ITERATIONS {
+            return Err(Error::InvalidIterations {
+                max_iterations,
+                max: Self::MAX_ITERATIONS,
+            });
+        }
+        Ok(Tolerance {
+            relative,
+            max_iterations,
+        })
+    }
+
+    /// A tolerance with the given relative target and the default cap,
+    /// unchecked: solvers use it [`clamped`](Self::clamped). Use
+    /// [`Tolerance::new`] to have a bad value reported.
     pub fn relative(relative: f64) -> Self {
         Tolerance {
             relative,
             ..Self::default()
+        }
+    }
+
+    /// The setting every solver actually uses: `relative` clamped into
+    /// `[MIN_RELATIVE, MAX_RELATIVE]` (NaN becomes the default `4ε`), and
+    /// `max_iterations` into `1..=MAX_ITERATIONS`. A valid tolerance is
+    /// returned unchanged.
+    pub fn clamped(self) -> Self {
+        let relative = if self.relative.is_nan() {
+            Self::default().relative
+        } else {
+            self.relative.clamp(Self::MIN_RELATIVE, Self::MAX_RELATIVE)
+        };
+        Tolerance {
+            relative,
+            max_iterations: self.max_iterations.clamp(1, Self::MAX_ITERATIONS),
         }
     }
 }

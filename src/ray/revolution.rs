@@ -44,6 +44,7 @@
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves};
+use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use super::turn_angle::turn_angle;
@@ -56,6 +57,11 @@ use std::cmp::Ordering::Less;
 /// Profiles of more spans than this get no [`MeridianCells`] (its masks and
 /// its construction grow with cells × spans); they cull by groups alone.
 const MAX_CELL_SPANS: usize = 1024;
+
+/// Ray origins farther than this many times the object's scale from the
+/// axis origin are moved along their line first (see
+/// [`SpanTable::intersect`]).
+const REORIGIN: f64 = 4.0;
 
 /// Spans visited nearest first; more than this are visited after, in
 /// profile order.
@@ -172,7 +178,7 @@ impl Candidates {
 /// rounding of `o + t·d` grows with it). Newton from an isolated root
 /// reaches a few ulps of the scale, so `1e-12` accepts every hit while a
 /// ray that misses a silhouette by more than that is a miss.
-const ACCEPT: f64 = 1e-12;
+pub(crate) const ACCEPT: f64 = 1e-12;
 
 /// How far past its span's ends (in the span's parameter) Newton may land
 /// and still count: rounding only. A hit beyond belongs to the neighbour
@@ -196,10 +202,14 @@ pub(crate) struct SpanTable {
     /// `C(n,i)·C(n,j)/C(2n,i+j)`, row-major `(n + 1) × (n + 1)`.
     weights: Vec<f64>,
     /// Largest `|x|`, and the height range, over all control points.
-    pub(crate) r_max: f64,
-    pub(crate) y_range: (f64, f64),
+    r_max: f64,
+    y_range: (f64, f64),
     /// Largest absolute local coordinate: the scale of relative tolerances.
     pub(crate) scale: f64,
+    /// The power of two that brought the profile into the working frame
+    /// (every length above is in it): it brings the object's scale into
+    /// `[0.5, 1)`, exactly.
+    unit: f64,
     /// The profile's parameter domain (first span's start, last span's end).
     domain: (f64, f64),
 }
@@ -318,20 +328,19 @@ impl Query {
 }
 
 impl SpanTable {
-    /// The table for a profile given as Bézier spans; `None` when there are
-    /// none or their degrees differ.
+    /// The table for a profile given as Bézier spans (in parameter order, as
+    /// [`Curve::bezier_spans`](crate::Curve::bezier_spans) promises); `None`
+    /// when there are none. Spans of lower degree are raised to the highest.
     pub(crate) fn new(spans: &[BezierSpan<2>]) -> Option<Self> {
-        let degree = spans.first()?.curve.degree();
-        if spans.iter().any(|s| s.curve.degree() != degree) {
-            return None;
-        }
-        let split = refine_spans(spans);
+        let degree = spans.iter().map(|s| s.curve.degree()).max()?;
+        let unit = working_unit(spans);
+        let split = refine_spans(spans, degree, unit);
         let spans = &split[..];
         let mut xs = Vec::with_capacity(spans.len() * (degree + 1));
         let mut ys = Vec::with_capacity(xs.capacity());
         let mut table = Vec::with_capacity(spans.len());
         for s in spans {
-            let pts = s.curve.points();
+            let pts = &s.points[..];
             xs.extend(pts.iter().map(|p| p.x));
             ys.extend(pts.iter().map(|p| p.y));
             let (y0, y1) = pts
@@ -403,6 +412,7 @@ impl SpanTable {
             r_max,
             y_range,
             scale,
+            unit,
         })
     }
 
@@ -422,7 +432,22 @@ impl SpanTable {
     }
 
     /// The nearest hit of `o + t·d` with `t_min < t < t_max`, in the local
-    /// frame.
+    /// frame (the profile's own units; `t` in units of `|d|`).
+    ///
+    /// The ray is first brought to the table's working frame, where every
+    /// step of the solver runs at a scale near 1 whatever the object's size
+    /// and the ray's:
+    /// - `d` becomes a unit vector (its length found without overflow), so
+    ///   that `|d|` anywhere in the floating-point range works;
+    /// - an origin farther than [`REORIGIN`] times the object's scale from
+    ///   the axis origin moves along the line to the line's point nearest
+    ///   that origin (a line that passes farther than twice the object's
+    ///   bounding ball is a miss), so that far origins neither overflow the
+    ///   squares nor blur the culling;
+    /// - lengths are multiplied by the table's power of two
+    ///   (`unit`), which is exact.
+    ///
+    /// `t_min`/`t_max` that are NaN, or `t_min ≥ t_max`, give `None`.
     pub(crate) fn intersect(
         &self,
         o: Point3<f64>,
@@ -432,11 +457,66 @@ impl SpanTable {
         tol: &Tolerance,
         report: &mut ExactReport,
     ) -> Option<LocalHit> {
-        let dn = d.norm();
-        if !(dn > 0.0 && dn.is_finite()) || o.coords.iter().any(|c| !c.is_finite()) {
+        // NaN-safe: false when either is NaN.
+        if !(t_min < t_max) || o.coords.iter().any(|c| !c.is_finite()) {
             return None;
         }
-        let q = Query::new(o.coords, d, tol, self.scale);
+        let m = d.amax();
+        if !(m > 0.0 && m.is_finite()) {
+            return None;
+        }
+        let dm = d / m;
+        let dm_norm = dm.norm();
+        let (du, dn) = (dm / dm_norm, m * dm_norm);
+        if !dn.is_finite() {
+            return None;
+        }
+        // Distances along the ray: t·|d| before the move, minus `shift` after.
+        let far = o.coords.amax() * self.unit > REORIGIN * self.scale;
+        let shift = if far { -o.coords.dot(&du) } else { 0.0 };
+        let o = o.coords + du * shift;
+        if far {
+            let ball = self
+                .r_max
+                .hypot(self.y_range.0.abs().max(self.y_range.1.abs()));
+            if !(o.norm() * self.unit <= 2.0 * ball + self.scale * 1e-9) {
+                return None;
+            }
+        }
+        let to_working = |t: f64| (t * dn - shift) * self.unit;
+        let (lo, hi) = (to_working(t_min), to_working(t_max));
+        let mut hit = self.intersect_working(o * self.unit, du, lo, hi, &tol.clamped(), report)?;
+        let back = 1.0 / self.unit;
+        hit.t = (hit.t * back + shift) / dn;
+        hit.point = Point3::from(hit.point.coords * back);
+        hit.x *= back;
+        hit.residual *= back;
+        (hit.t > t_min && hit.t < t_max).then_some(hit)
+    }
+
+    /// The largest `|x|` and the height range of the profile's control
+    /// points, in the profile's own units.
+    pub(crate) fn local_bounds(&self) -> (f64, (f64, f64)) {
+        let back = 1.0 / self.unit;
+        (
+            self.r_max * back,
+            (self.y_range.0 * back, self.y_range.1 * back),
+        )
+    }
+
+    /// [`intersect`](Self::intersect) in the working frame: `d` of unit
+    /// length, lengths multiplied by `unit`, `t_min < t_max`.
+    fn intersect_working(
+        &self,
+        o: Vector3<f64>,
+        d: Vector3<f64>,
+        t_min: f64,
+        t_max: f64,
+        tol: &Tolerance,
+        report: &mut ExactReport,
+    ) -> Option<LocalHit> {
+        let dn = d.norm();
+        let q = Query::new(o, d, tol, self.scale);
         // Hits within the position uncertainty of the origin are the origin
         // itself (a secondary ray leaving the surface).
         let t_floor = t_min + q.accept / dn;
@@ -745,52 +825,17 @@ impl SpanTable {
         t0: f64,
         iterations: &mut u32,
     ) -> Option<LocalHit> {
-        // The profile is evaluated once per iterate and kept with it (the
-        // pole test and the hit reuse the best iterate's).
         let eval = |s: f64| span.point(s);
-        // The meridian-plane residual (ρ − |x|, p_y − y) at (s, t), with ρ,
-        // the profile there and the ray point.
-        let residual = |s: f64, t: f64| {
-            let profile = eval(s);
-            let p = q.o + q.d * t;
-            let rho = (p.x * p.x + p.z * p.z).sqrt();
-            ((rho - profile.x.abs(), p.y - profile.y), rho, profile, p)
-        };
-        let (mut s, mut t) = (s0, t0);
-        let (mut f, mut rho, mut profile, mut p) = residual(s, t);
-        let mut r = (f.0 * f.0 + f.1 * f.1).sqrt();
-        let mut best = (r, s, t, profile);
-        for _ in 0..q.max_iterations {
-            *iterations += 1;
-            if r <= q.target || rho == 0.0 {
-                break;
-            }
-            let ProfilePoint { x, dx, dy, .. } = profile;
-            let sigma = if x < 0.0 { -1.0 } else { 1.0 };
-            // J = [[ρ′, −σx′], [d_y, −y′]] acting on (Δt, Δs).
-            let drho = (p.x * q.d.x + p.z * q.d.z) / rho;
-            let (j00, j01, j10, j11) = (drho, -sigma * dx, q.d.y, -dy);
-            let det = j00 * j11 - j01 * j10;
-            if det == 0.0 || !det.is_finite() {
-                break;
-            }
-            let step_t = (-f.0 * j11 + f.1 * j01) / det;
-            let step_s = (-f.1 * j00 + f.0 * j10) / det;
-            if !(step_t.is_finite() && step_s.is_finite()) {
-                break;
-            }
-            t += step_t;
-            s = (s + step_s).clamp(-0.5, 1.5);
-            (f, rho, profile, p) = residual(s, t);
-            let r_new = (f.0 * f.0 + f.1 * f.1).sqrt();
-            if r_new < best.0 {
-                best = (r_new, s, t, profile);
-            }
-            if r_new >= r {
-                break;
-            }
-            r = r_new;
-        }
+        let mut best = meridian_newton(
+            &q.o,
+            &q.d,
+            (s0, t0),
+            (-0.5, 1.5),
+            q.target,
+            q.max_iterations,
+            eval,
+            iterations,
+        );
         // On the axis (a pole or an apex) the system is singular, so Newton
         // stalls a little off. There the hit is where the ray meets the axis
         // point (0, y(s*), 0) with x(s*) = 0: solve that directly and keep it
@@ -832,14 +877,7 @@ impl SpanTable {
         // The surface point in the ray point's direction from the axis
         // (θ = 0 on the axis), S = (x cos θ, y, −x sin θ): for x < 0 the
         // point is |x| in p's direction, at θ + π.
-        let p = q.o + q.d * t;
-        let rho = (p.x * p.x + p.z * p.z).sqrt();
-        let (cs, sn) = if rho > 0.0 {
-            let sigma = if x < 0.0 { -1.0 } else { 1.0 };
-            (sigma * p.x / rho, -sigma * p.z / rho)
-        } else {
-            (1.0, 0.0)
-        };
+        let (sn, cs) = meridian_angle(&(q.o + q.d * t), x);
         let theta = turn_angle(sn, cs);
         let u = (u0 + (u1 - u0) * s).clamp(self.domain.0, self.domain.1);
         Some(LocalHit {
@@ -935,16 +973,55 @@ fn axis_root(xs: &[f64], s0: f64) -> Option<f64> {
 /// ray and leave simpler polynomials to the ones that remain.
 const MIN_PIECES: usize = 8;
 
-/// The spans cut by de Casteljau subdivision into `⌈MIN_PIECES / n⌉` equal
-/// parameter parts each (the same curve, exactly up to rounding).
-fn refine_spans(spans: &[BezierSpan<2>]) -> Vec<BezierSpan<2>> {
+/// One refined span in the working frame: its profile parameters and
+/// control points.
+struct Piece {
+    knots: (f64, f64),
+    points: Vec<nalgebra::Vector2<f64>>,
+}
+
+/// The power of two that brings the largest control-point coordinate of
+/// `spans` into `[0.5, 1)` (1 when they are all zero): multiplying by it is
+/// exact, so the working frame is the same profile, only rescaled.
+fn working_unit(spans: &[BezierSpan<2>]) -> f64 {
+    let size = spans
+        .iter()
+        .flat_map(|s| s.curve.points())
+        .fold(0.0_f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    if !(size > 0.0 && size.is_finite()) {
+        return 1.0;
+    }
+    // size = f·2^e with f in [0.5, 1): the unit is 2^−e.
+    let e = size.log2().floor() as i32 + 1;
+    let unit = 2.0_f64.powi(-e);
+    // log2 may round across a power of two: settle it exactly.
+    if size * unit >= 1.0 {
+        unit * 0.5
+    } else if size * unit < 0.5 {
+        unit * 2.0
+    } else {
+        unit
+    }
+}
+
+/// The spans raised to `degree` and cut by de Casteljau subdivision into
+/// `⌈MIN_PIECES / n⌉` equal parameter parts each (the same curve, exactly
+/// up to rounding), control points multiplied by `unit`. Nothing is dropped.
+fn refine_spans(spans: &[BezierSpan<2>], degree: usize, unit: f64) -> Vec<Piece> {
     use crate::bernstein::subdivide;
-    use nalgebra::Point2;
     let parts = MIN_PIECES.div_ceil(spans.len()).max(1);
     let mut out = Vec::with_capacity(spans.len() * parts);
     for span in spans {
         let (a, b) = span.knots;
-        let mut rest: Vec<_> = span.curve.points().iter().map(|p| p.coords).collect();
+        let mut rest: Vec<_> = span
+            .curve
+            .points()
+            .iter()
+            .map(|p| p.coords * unit)
+            .collect();
+        while rest.len() <= degree {
+            rest = raise_degree(&rest);
+        }
         let (mut left, mut right) = (rest.clone(), rest.clone());
         for k in 0..parts {
             let (lo, hi) = (
@@ -955,7 +1032,7 @@ fn refine_spans(spans: &[BezierSpan<2>]) -> Vec<BezierSpan<2>> {
                     a + (b - a) * (k + 1) as f64 / parts as f64
                 },
             );
-            let piece = if k + 1 == parts {
+            let points = if k + 1 == parts {
                 rest.clone()
             } else {
                 // Split what remains at the share this part takes of it.
@@ -963,16 +1040,31 @@ fn refine_spans(spans: &[BezierSpan<2>]) -> Vec<BezierSpan<2>> {
                 rest.copy_from_slice(&right);
                 left.clone()
             };
-            let points = piece.into_iter().map(Point2::from).collect();
-            if let Ok(curve) = crate::Bezier::new(points) {
-                out.push(BezierSpan {
-                    knots: (lo, hi),
-                    curve,
-                });
-            }
+            out.push(Piece {
+                knots: (lo, hi),
+                points,
+            });
         }
     }
     out
+}
+
+/// The control points of the same Bézier curve one degree higher:
+/// `Qᵢ = (i/(n+1))·Pᵢ₋₁ + (1 − i/(n+1))·Pᵢ`, `i = 0 … n+1` (Farin, *Curves
+/// and Surfaces for CAGD*, §5.1).
+fn raise_degree(points: &[nalgebra::Vector2<f64>]) -> Vec<nalgebra::Vector2<f64>> {
+    let m = points.len() as f64;
+    (0..=points.len())
+        .map(|i| {
+            let a = i as f64 / m;
+            match (i.checked_sub(1).map(|j| points[j]), points.get(i)) {
+                (Some(p), Some(q)) => p * a + q * (1.0 - a),
+                (Some(p), None) => p,
+                (None, Some(q)) => *q,
+                (None, None) => nalgebra::Vector2::zeros(),
+            }
+        })
+        .collect()
 }
 
 /// The parameters to try for one root report: the root itself, or the ends

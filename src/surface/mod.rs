@@ -1,6 +1,7 @@
 //! Parametric surfaces: the [`Surface`] trait and surfaces of revolution.
 
 mod mesh;
+mod profile_approximation;
 mod revolution;
 
 pub use mesh::Mesh;

@@ -1,7 +1,10 @@
 //! Surfaces of revolution: a planar profile turned about an axis.
 
+use super::profile_approximation::approximate;
+use crate::curve::BezierSpan;
+use crate::ray::profile_refine::refine_on_profile;
 use crate::ray::revolution::{ExactReport, SpanTable};
-use crate::{Aabb, Curve, Hit, Intersect, Ray, Surface, Tolerance};
+use crate::{Aabb, Curve, Error, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{
     Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
 };
@@ -32,7 +35,41 @@ use std::f64::consts::TAU;
 /// the bottom of a vase) the normal is `±` the axis; if it meets it at an angle
 /// (a cone's apex) there is no tangent plane and the normal is `None`.
 ///
+/// A NaN or infinite angle evaluates at `θ = 0`.
+///
 /// A revolution can be placed anywhere with [`with_axis`](Self::with_axis).
+///
+/// # Which profiles, and what ray intersection guarantees
+/// - **Profiles with [Bézier spans](Curve::bezier_spans)** ([`Bezier`],
+///   [`BSpline`], or your own type that provides them; spans of different
+///   degrees are raised to the highest): the exact intersector. Certified:
+///   every transversal hit is found, no false hit is reported, the nearest in
+///   `(t_min, t_max)` to the [`Tolerance`].
+/// - **Any other [`Curve<2>`]** (your own type with the three required
+///   methods): at construction the profile is replaced by its piecewise
+///   cubic Hermite approximation (points and derivatives matched at the
+///   breakpoints, pieces halved until the approximation is within `1e-7` of
+///   the profile's size at test points; at most 4096 pieces). A ray is
+///   intersected exactly with the approximation's surface and each hit,
+///   nearest first, is refined by Newton's method on your profile and kept
+///   only if it lands on it (to the same residual as the exact intersector).
+///   Every hit of a ray that crosses the surface at an angle is found; a
+///   ray that grazes a silhouette within the approximation's deviation
+///   ([`approximation_deviation`](Self::approximation_deviation)) may be
+///   found or not. The profile should be `C¹` (a kink costs many pieces; a
+///   jump is refused). `bounds()` is that of the approximation widened by
+///   twice its deviation. Nothing known only through samples can be
+///   certified: for a guarantee, give the profile Bézier spans.
+/// - **A profile that breaks the [`Curve`] contract**: no hits, empty
+///   bounds ([`Revolution::try_new`] says why).
+///
+/// Coordinates up to [`MAX_COORDINATE`](crate::MAX_COORDINATE) work at any
+/// scale: the intersector rescales the profile by a power of two, takes the
+/// ray direction at unit length whatever its `|dir|`, and moves far ray
+/// origins along their line first.
+///
+/// [`Bezier`]: crate::Bezier
+/// [`BSpline`]: crate::BSpline
 #[derive(Debug, Clone, PartialEq)]
 pub struct Revolution<C> {
     profile: C,
@@ -42,33 +79,162 @@ pub struct Revolution<C> {
     /// `to_world`'s rotation as a matrix: rays and hits are turned with it
     /// (9 products a vector, against about twice that for the quaternion).
     rotation: Rotation3<f64>,
-    /// The exact intersector's per-surface data, when the profile has
-    /// Bézier spans of one degree.
+    /// The exact intersector's per-surface data: of the profile's Bézier
+    /// spans, or of its cubic approximation (`approximation`). `None` when
+    /// the profile breaks the [`Curve`] contract (`broken` says how).
     exact: Option<SpanTable>,
+    /// For a profile without Bézier spans: the largest deviation of the
+    /// approximation that `exact` was built from, measured at its test
+    /// points.
+    approximation: Option<f64>,
+    /// Why the profile breaks the [`Curve`] contract, if it does.
+    broken: Option<Error>,
     tolerance: Tolerance,
+}
+
+/// How many hits of a profile's approximation are tried, nearest first,
+/// before a ray is called a miss (each that does not refine onto the
+/// profile, as near a silhouette, moves the search past it).
+const REFINE_TRIES: usize = 8;
+
+/// The intersector's data for `profile`, and the deviation of the
+/// approximation it was built from if the profile has no Bézier spans;
+/// an error if the profile breaks the [`Curve`] contract.
+fn intersector_data<C: Curve<2>>(profile: &C) -> Result<(SpanTable, Option<f64>), Error> {
+    let (a, b) = profile.domain();
+    let limit = crate::MAX_COORDINATE;
+    if !(a < b && a.abs() <= limit && b.abs() <= limit) {
+        return Err(Error::InvalidDomain { start: a, end: b });
+    }
+    // The points the surface's own evaluation will show.
+    const CHECKS: usize = 16;
+    for k in 0..=CHECKS {
+        let t = if k == CHECKS {
+            b
+        } else {
+            a + (b - a) * (k as f64 / CHECKS as f64)
+        };
+        let (p, d) = profile.eval_with_derivative(t);
+        if !p.coords.iter().chain(d.iter()).all(|v| v.is_finite()) || p.coords.amax() > limit {
+            return Err(Error::CurveNotFinite { t });
+        }
+    }
+    match profile.bezier_spans() {
+        Some(spans) => {
+            check_spans(&spans)?;
+            let table = SpanTable::new(&spans).ok_or(Error::SpansOutOfOrder { index: 0 })?;
+            Ok((table, None))
+        }
+        None => {
+            let approx = approximate(profile, (a, b))?;
+            let table =
+                SpanTable::new(&approx.spans).ok_or(Error::ProfileTooRough { pieces: 0 })?;
+            Ok((table, Some(approx.deviation)))
+        }
+    }
+}
+
+/// Checks what [`Curve::bezier_spans`] promises: at least one span, each
+/// on a finite non-empty interval that starts where the previous one ends
+/// or later, with finite control points within
+/// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (and its rounding).
+fn check_spans(spans: &[BezierSpan<2>]) -> Result<(), Error> {
+    if spans.is_empty() {
+        return Err(Error::SpansOutOfOrder { index: 0 });
+    }
+    let limit = crate::MAX_COORDINATE * (1.0 + 1e-9);
+    let mut end = f64::NEG_INFINITY;
+    for (index, span) in spans.iter().enumerate() {
+        let (a, b) = span.knots;
+        if !(a < b && a >= end && b.is_finite()) {
+            return Err(Error::SpansOutOfOrder { index });
+        }
+        end = b;
+        let finite = span
+            .curve
+            .points()
+            .iter()
+            .all(|p| p.coords.iter().all(|v| v.abs() <= limit));
+        if !finite {
+            return Err(Error::SpanPointNotFinite { span: index });
+        }
+    }
+    Ok(())
 }
 
 impl<C: Curve<2>> Revolution<C> {
     /// The surface of `profile` turned about the `y` axis through the origin.
     ///
-    /// If the profile provides [Bézier spans](Curve::bezier_spans) (as
-    /// [`Bezier`](crate::Bezier) and [`BSpline`](crate::BSpline) do), the data
-    /// of the exact intersector is computed here, once.
+    /// The intersector's data is computed here, once: from the profile's
+    /// [Bézier spans](Curve::bezier_spans) if it has them (as
+    /// [`Bezier`](crate::Bezier) and [`BSpline`](crate::BSpline) do), else
+    /// from its cubic approximation (see the type's docs).
+    ///
+    /// Never panics. A profile that breaks the [`Curve`] contract (a domain
+    /// that is not a finite interval, NaN or infinite values, Bézier spans
+    /// empty or out of order, a curve too rough to approximate) gives a
+    /// surface that rays do not hit and whose [`bounds`](Intersect::bounds)
+    /// are [`Aabb::EMPTY`]; [`try_new`](Self::try_new) reports why, and so
+    /// does [`contract_error`](Self::contract_error).
     pub fn new(profile: C) -> Self {
-        let exact = profile.bezier_spans().and_then(|s| SpanTable::new(&s));
+        let (exact, approximation, broken) = match intersector_data(&profile) {
+            Ok((table, approximation)) => (Some(table), approximation, None),
+            Err(e) => (None, None, Some(e)),
+        };
         Revolution {
             profile,
             to_world: Isometry3::identity(),
             rotation: Rotation3::identity(),
             exact,
+            approximation,
+            broken,
             tolerance: Tolerance::default(),
         }
     }
 
+    /// As [`new`](Self::new), but a profile that breaks the [`Curve`]
+    /// contract is an error.
+    ///
+    /// # Errors
+    /// [`Error::InvalidDomain`] (not a finite interval `a < b` within
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE)); [`Error::CurveNotFinite`]
+    /// (a NaN, infinite or too large point or derivative inside the
+    /// domain); [`Error::SpansOutOfOrder`] or [`Error::SpanPointNotFinite`]
+    /// (Bézier spans that break their promise); [`Error::ProfileTooRough`]
+    /// (a profile without spans that cubic pieces cannot follow: a jump, or
+    /// a kink away from where the pieces meet).
+    ///
+    /// ```
+    /// use revolve::{Curve, Error, Revolution};
+    /// use revolve::nalgebra::{Point2, Vector2};
+    ///
+    /// struct Backwards;
+    /// impl Curve<2> for Backwards {
+    ///     fn domain(&self) -> (f64, f64) { (1.0, 0.0) }
+    ///     fn eval(&self, t: f64) -> Point2<f64> { Point2::new(1.0, t) }
+    ///     fn derivative(&self, _: f64) -> Vector2<f64> { Vector2::new(0.0, 1.0) }
+    /// }
+    /// assert!(matches!(Revolution::try_new(Backwards), Err(Error::InvalidDomain { .. })));
+    /// ```
+    pub fn try_new(profile: C) -> Result<Self, Error> {
+        let surface = Self::new(profile);
+        match surface.broken {
+            Some(e) => Err(e),
+            None => Ok(surface),
+        }
+    }
+
+    /// Why the profile breaks the [`Curve`] contract, if it does (the
+    /// surface is then empty to rays).
+    pub fn contract_error(&self) -> Option<&Error> {
+        self.broken.as_ref()
+    }
+
     /// The same surface with the given intersection accuracy (the default is
-    /// full double precision).
+    /// full double precision), [clamped](Tolerance::clamped) into the valid
+    /// range.
     pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
-        self.tolerance = tolerance;
+        self.tolerance = tolerance.clamped();
         self
     }
 
@@ -104,15 +270,20 @@ impl<C: Curve<2>> Revolution<C> {
                 .inverse_transform_vector(&(ray.origin.coords - origin)),
         );
         let d = self.rotation.inverse_transform_vector(&ray.dir);
-        let local = exact.intersect(o, d, t_min, t_max, &self.tolerance, report)?;
+        let local = match self.approximation {
+            None => exact.intersect(o, d, t_min, t_max, &self.tolerance, report)?,
+            Some(_) => self.refined_hit(exact, o, d, t_min, t_max, report)?,
+        };
         report.residual = Some(local.residual);
         let at_end = local.u >= self.profile.domain().1;
+        let finite = |n: &Unit<Vector3<f64>>| n.iter().all(|c| c.is_finite());
         let normal_local = match local.tangent {
             Some(t) => profile_normal(local.x, t, at_end, local.sin_cos),
             None => self.normal_local(local.u, local.theta),
         }
+        .filter(finite)
         // No tangent plane (a cone's apex): face the ray.
-        .or_else(|| Unit::try_new(-d, 0.0))?;
+        .or_else(|| Unit::try_new(-d / d.amax(), 0.0))?;
         let point = Point3::from(self.rotation * local.point.coords + origin);
         if !point.coords.iter().all(|c| c.is_finite()) {
             return None;
@@ -125,11 +296,56 @@ impl<C: Curve<2>> Revolution<C> {
         })
     }
 
-    /// Whether [`Intersect`] runs the exact intersector on this surface (the
-    /// profile has Bézier spans of one degree); if not, use
-    /// [`NewtonIntersector`](crate::NewtonIntersector).
+    /// The nearest hit for a profile without Bézier spans: the hits of its
+    /// approximation, nearest first, refined by Newton's method on the
+    /// profile itself; one that does not refine (a ray grazing the
+    /// approximation where the profile is missed) moves the search past it.
+    fn refined_hit(
+        &self,
+        table: &SpanTable,
+        o: Point3<f64>,
+        d: Vector3<f64>,
+        t_min: f64,
+        t_max: f64,
+        report: &mut ExactReport,
+    ) -> Option<crate::ray::revolution::LocalHit> {
+        let (r_max, y_range) = table.local_bounds();
+        let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
+        let mut from = t_min;
+        for _ in 0..REFINE_TRIES {
+            let guess = table.intersect(o, d, from, t_max, &self.tolerance, report)?;
+            let refined = refine_on_profile(
+                &self.profile,
+                self.profile.domain(),
+                &o.coords,
+                &d,
+                (guess.u, guess.t),
+                scale,
+                &self.tolerance,
+                &mut report.iterations,
+            );
+            if let Some(hit) = refined.filter(|h| h.t > t_min && h.t < t_max) {
+                return Some(hit);
+            }
+            from = guess.t;
+        }
+        None
+    }
+
+    /// Whether [`Intersect`] runs the exact intersector on the profile's own
+    /// Bézier spans (certified: no hit missed, none false). `false` for a
+    /// profile without spans (its hits come from an approximation refined
+    /// on the profile, see the type's docs) and for one that breaks the
+    /// [`Curve`] contract.
     pub fn has_exact_intersector(&self) -> bool {
-        self.exact.is_some()
+        self.exact.is_some() && self.approximation.is_none()
+    }
+
+    /// For a profile without Bézier spans: the largest deviation of its
+    /// cubic approximation from the profile, measured at the approximation's
+    /// test points (`None` for profiles with spans, and broken ones).
+    pub fn approximation_deviation(&self) -> Option<f64> {
+        self.approximation
     }
 
     /// The intersection accuracy.
@@ -176,7 +392,7 @@ impl<C: Curve<2>> Revolution<C> {
     #[inline]
     pub fn eval_local(&self, u: f64, theta: f64) -> Point3<f64> {
         let p = self.profile.eval(u);
-        let (s, c) = theta.sin_cos();
+        let (s, c) = finite_angle(theta).sin_cos();
         Point3::new(p.x * c, p.y, -p.x * s)
     }
 
@@ -184,7 +400,7 @@ impl<C: Curve<2>> Revolution<C> {
     #[inline]
     pub fn partials_local(&self, u: f64, theta: f64) -> (Vector3<f64>, Vector3<f64>) {
         let (p, d) = self.profile.eval_with_derivative(u);
-        let (s, c) = theta.sin_cos();
+        let (s, c) = finite_angle(theta).sin_cos();
         (
             Vector3::new(d.x * c, d.y, -d.x * s),
             Vector3::new(-p.x * s, 0.0, -p.x * c),
@@ -195,8 +411,20 @@ impl<C: Curve<2>> Revolution<C> {
     pub fn normal_local(&self, u: f64, theta: f64) -> Option<Unit<Vector3<f64>>> {
         let x = self.profile.eval(u).x;
         let at_end = u >= self.profile.domain().1;
-        profile_normal(x, self.profile.tangent(u)?, at_end, theta.sin_cos())
+        profile_normal(
+            x,
+            self.profile.tangent(u)?,
+            at_end,
+            finite_angle(theta).sin_cos(),
+        )
     }
+}
+
+/// The angle itself, or 0 for a NaN or infinite one (whose sine and cosine
+/// would be NaN): see [`Revolution`]'s edge rules.
+#[inline(always)]
+fn finite_angle(theta: f64) -> f64 {
+    if theta.is_finite() { theta } else { 0.0 }
 }
 
 /// The local unit normal at the angle `θ`, given as `(sin θ, cos θ)`, of the
@@ -247,28 +475,29 @@ impl<C: Curve<2>> Surface for Revolution<C> {
 }
 
 impl<C: Curve<2>> Intersect for Revolution<C> {
-    /// The exact intersector: the nearest hit with `t_min < t < t_max`, or
-    /// `None`.
-    ///
-    /// It needs a profile with [Bézier spans](Curve::bezier_spans) of one
-    /// degree ([`Bezier`](crate::Bezier), [`BSpline`](crate::BSpline)); for
-    /// any other profile this reports no hits and empty bounds: intersect
-    /// such surfaces with [`NewtonIntersector`](crate::NewtonIntersector)
-    /// (`NewtonIntersector::new(&surface, depth)`), which only needs the
-    /// surface's patch bounds. [`Revolution::has_exact_intersector`] tells
-    /// which applies.
+    /// The nearest hit with `t_min < t < t_max`, or `None`: the exact
+    /// intersector for profiles with Bézier spans, the refined
+    /// approximation for others (see [`Revolution`]'s docs for what each
+    /// guarantees; [`Revolution::has_exact_intersector`] tells which
+    /// applies). `t_min` or `t_max` NaN, or `t_min ≥ t_max`, is a miss; so
+    /// is a zero, NaN or infinite direction.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.intersect_reporting(ray, t_min, t_max, &mut ExactReport::default())
     }
 
     fn bounds(&self) -> Aabb {
         match &self.exact {
-            // The cylinder around the profile's radius and height ranges.
-            Some(e) => Aabb::new(
-                Point3::new(-e.r_max, e.y_range.0, -e.r_max),
-                Point3::new(e.r_max, e.y_range.1, e.r_max),
-            )
-            .transformed(&self.to_world),
+            // The cylinder around the profile's radius and height ranges
+            // (of its approximation, widened by twice its deviation).
+            Some(e) => {
+                let (r, (y0, y1)) = e.local_bounds();
+                let pad = 2.0 * self.approximation.unwrap_or(0.0);
+                Aabb::new(
+                    Point3::new(-r - pad, y0 - pad, -r - pad),
+                    Point3::new(r + pad, y1 + pad, r + pad),
+                )
+                .transformed(&self.to_world)
+            }
             None => Aabb::EMPTY,
         }
     }
