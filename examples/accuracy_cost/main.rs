@@ -8,7 +8,8 @@
 //!
 //! On the vase (one cubic Bézier) and the wine glass (a 25-point uniform
 //! cubic B-spline) it measures
-//! - revolve's exact intersector at tolerances `1e-2 … 1e-14`;
+//! - revolve's exact intersector at tolerances `1e-3 … 1e-14`, and the same
+//!   profiles given as own curves (no Bézier spans: approximation + Newton);
 //! - revolve's generic Newton intersector at several patch-tree depths and
 //!   tolerances;
 //! - the method the course teaches ([`course`]): Newton on `(t, u, v)` from

@@ -244,7 +244,7 @@ mod tests {
         let files = write(&dir, &results, &plan).unwrap();
         assert_eq!(files.len(), 4);
         let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
-        assert!(md.contains("| vase | revolve exact | tol 1e-2 |"));
+        assert!(md.contains("| vase | revolve exact | tol 1e-3 |"));
         assert!(md.contains("| wine glass | parry TriMesh |"));
         assert!(md.contains("## Curves"));
         let svg = std::fs::read_to_string(dir.join("intersection.svg")).unwrap();
