@@ -475,13 +475,9 @@ impl SpanTable {
         let far = o.coords.amax() * self.unit > REORIGIN * self.scale;
         let shift = if far { -o.coords.dot(&du) } else { 0.0 };
         let o = o.coords + du * shift;
-        if far {
-            let ball = self
-                .r_max
-                .hypot(self.y_range.0.abs().max(self.y_range.1.abs()));
-            if !(o.norm() * self.unit <= 2.0 * ball + self.scale * 1e-9) {
-                return None;
-            }
+        // The object lies in the ball of radius √2·scale about the origin.
+        if far && !(o.norm() * self.unit <= 3.0 * self.scale) {
+            return None;
         }
         let to_working = |t: f64| (t * dn - shift) * self.unit;
         let (lo, hi) = (to_working(t_min), to_working(t_max));
