@@ -3,8 +3,10 @@
 use crate::ray::Ray;
 use nalgebra::{Isometry3, Point3, Vector3};
 
-/// An axis-aligned box `[min, max]` in 3D. A box with `min > max` on some axis
-/// is empty ([`Aabb::EMPTY`]); it contains nothing and no ray hits it.
+/// An axis-aligned box `[min, max]` in 3D. A box with `min > max`, a NaN,
+/// `min = +∞` or `max = −∞` on some axis contains no finite point: it is
+/// empty (like [`Aabb::EMPTY`]), and no ray hits it. Infinite boxes (ends at
+/// `±∞`) are allowed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
     /// The corner with the smallest coordinates.
@@ -33,9 +35,13 @@ impl Aabb {
         points.into_iter().fold(Self::EMPTY, |b, p| b.include(p))
     }
 
-    /// Whether the box contains nothing.
+    /// Whether the box contains no finite point: on some axis `min > max`,
+    /// a NaN, `min = +∞` or `max = −∞`.
     pub fn is_empty(&self) -> bool {
-        self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
+        (0..3).any(|i| {
+            let (lo, hi) = (self.min[i], self.max[i]);
+            !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY
+        })
     }
 
     /// The box grown to contain `p`.
@@ -54,8 +60,12 @@ impl Aabb {
         }
     }
 
-    /// The box grown by `margin` on every side.
+    /// The box grown by `margin` on every side (shrunk for a negative one).
+    /// An empty box, or a NaN margin, gives [`Aabb::EMPTY`].
     pub fn expand(&self, margin: f64) -> Self {
+        if self.is_empty() || margin.is_nan() {
+            return Aabb::EMPTY;
+        }
         let m = Vector3::repeat(margin);
         Aabb {
             min: self.min - m,
@@ -63,19 +73,34 @@ impl Aabb {
         }
     }
 
-    /// The smallest box containing this box moved by the rigid motion `m`:
-    /// the centre is moved, and the half-extents are multiplied by the
-    /// absolute rotation matrix (exact for the box of a rotated box).
+    /// The smallest box containing this box moved by the rigid motion `m`
+    /// (`x ↦ Rx + t`), by interval arithmetic: on axis `i`,
+    /// `tᵢ + Σⱼ min(Rᵢⱼ minⱼ, Rᵢⱼ maxⱼ)` to `tᵢ + Σⱼ max(…)`, terms with
+    /// `Rᵢⱼ = 0` left out. Exact for the box of a rotated box; infinite boxes
+    /// stay infinite only along the axes they reach, and no NaN arises. An
+    /// empty box stays empty.
     pub fn transformed(&self, m: &Isometry3<f64>) -> Self {
         if self.is_empty() {
             return *self;
         }
-        let center = m * self.center();
-        let half = m.rotation.to_rotation_matrix().matrix().abs() * (self.extent() * 0.5);
-        Aabb {
-            min: center - half,
-            max: center + half,
+        let r = m.rotation.to_rotation_matrix();
+        let t = m.translation.vector;
+        let mut out = Aabb {
+            min: Point3::from(t),
+            max: Point3::from(t),
+        };
+        for i in 0..3 {
+            for j in 0..3 {
+                let rij = r[(i, j)];
+                if rij == 0.0 {
+                    continue;
+                }
+                let (a, b) = (rij * self.min[j], rij * self.max[j]);
+                out.min[i] += a.min(b);
+                out.max[i] += a.max(b);
+            }
         }
+        out
     }
 
     /// Whether `p` lies in the closed box.
@@ -83,19 +108,41 @@ impl Aabb {
         (0..3).all(|i| self.min[i] <= p[i] && p[i] <= self.max[i])
     }
 
-    /// The centre of the box.
+    /// The centre of the box: per axis `(min + max)/2`, computed without
+    /// overflow; `0` on an axis infinite both ways, `±∞` on a half-infinite
+    /// one. The centre of an empty box is the origin.
     pub fn center(&self) -> Point3<f64> {
-        nalgebra::center(&self.min, &self.max)
+        if self.is_empty() {
+            return Point3::origin();
+        }
+        Point3::from(Vector3::from_fn(|i, _| {
+            let (lo, hi) = (self.min[i], self.max[i]);
+            let sum = lo + hi;
+            if sum.is_finite() {
+                0.5 * sum
+            } else if lo == f64::NEG_INFINITY && hi == f64::INFINITY {
+                0.0
+            } else {
+                0.5 * lo + 0.5 * hi
+            }
+        }))
     }
 
-    /// The edge lengths.
+    /// The edge lengths `max − min` (infinite for an infinite box, or when
+    /// the difference overflows); zero for an empty box.
     pub fn extent(&self) -> Vector3<f64> {
+        if self.is_empty() {
+            return Vector3::zeros();
+        }
         self.max - self.min
     }
 
     /// The largest absolute coordinate of the box: its scale for relative
-    /// tolerances.
+    /// tolerances. Zero for an empty box.
     pub fn scale(&self) -> f64 {
+        if self.is_empty() {
+            return 0.0;
+        }
         self.min.coords.amax().max(self.max.coords.amax())
     }
 
@@ -105,9 +152,11 @@ impl Aabb {
     ///
     /// Direction components that are zero are handled without dividing: the
     /// ray is then inside that slab for all `t` or for none. The comparisons
-    /// are arranged so that a NaN from `0 · ∞` never passes as a hit.
+    /// are arranged so that a NaN from `0 · ∞` never passes as a hit. A ray
+    /// or range with a NaN, or `t_min > t_max`, gives `None`.
     pub fn clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        if self.is_empty() {
+        let nan_ray = ray.origin.iter().chain(ray.dir.iter()).any(|c| c.is_nan());
+        if self.is_empty() || nan_ray || !(t_min <= t_max) {
             return None;
         }
         let (mut lo, mut hi) = (t_min, t_max);

@@ -166,6 +166,27 @@ pub enum Error {
         /// The number of pieces tried.
         pieces: usize,
     },
+    /// More segments were asked of [`Curve::try_discretize`](crate::Curve::try_discretize)
+    /// than [`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS).
+    TooManySegments {
+        /// The number of segments asked for.
+        segments: usize,
+        /// The largest number accepted.
+        max: usize,
+    },
+    /// Memory for a result could not be allocated.
+    AllocationFailed {
+        /// The number of bytes asked for (saturated at `usize::MAX`).
+        bytes: usize,
+    },
+    /// A derivative of the curve could exceed
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE) in magnitude: knots
+    /// too close together for the control points' differences (or a degree
+    /// too high for the coordinates).
+    DerivativeOverflow {
+        /// The order of the derivative (`1 ..= degree`).
+        order: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -298,6 +319,19 @@ impl fmt::Display for Error {
                 "the profile could not be approximated by {pieces} cubic pieces: is it \
                  continuous and differentiable?"
             ),
+            Error::TooManySegments { segments, max } => write!(
+                f,
+                "{segments} segments asked for, more than the {max} a discretization can have"
+            ),
+            Error::AllocationFailed { bytes } => {
+                write!(f, "could not allocate {bytes} bytes for the result")
+            }
+            Error::DerivativeOverflow { order } => write!(
+                f,
+                "the derivative of order {order} could exceed {} in magnitude: spread the \
+                 knots or bring the control points closer together",
+                Num(crate::curve::MAX_DERIVATIVE)
+            ),
         }
     }
 }
@@ -318,4 +352,16 @@ impl fmt::Display for Num {
             write!(f, "{:e}", self.0)
         }
     }
+}
+
+/// An empty vector with room for `len` elements, or
+/// [`Error::AllocationFailed`] when the memory cannot be had (instead of
+/// the process aborting).
+pub(crate) fn try_with_capacity<T>(len: usize) -> Result<Vec<T>, Error> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| Error::AllocationFailed {
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
+    Ok(v)
 }

@@ -81,7 +81,9 @@ pub mod testing;
 pub const MAX_COORDINATE: f64 = 1e100;
 
 pub use aabb::Aabb;
-pub use curve::{BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening};
+pub use curve::{
+    BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening, MAX_DERIVATIVE, MAX_SEGMENTS,
+};
 pub use error::Error;
 pub use ray::newton::{NewtonIntersector, NewtonReport};
 pub use ray::{ExactReport, Hit, Intersect, Ray, Tolerance};

@@ -11,6 +11,10 @@
 //! });
 //! ```
 //!
+//! Every strategy and checker is total: bad arguments are clamped as each
+//! item documents (a `scale` that is NaN, negative or too large, a degree
+//! range that is empty or too high, a huge sample count), never a panic.
+//!
 //! The checkers compare analytic derivatives with central differences
 //! `(f(t + h) − f(t − h))/2h` with `h = √ε·L` (`L` the parameter range). The
 //! rounding error `ε|f|/h` is then about `1.5e-8·|f|/L`; the truncation error
@@ -51,20 +55,45 @@ impl fmt::Display for LawViolation {
 
 impl std::error::Error for LawViolation {}
 
-/// A point with coordinates in `[−scale, scale]`.
+/// The highest degree the curve strategies generate; higher degrees are
+/// clamped to it.
+pub const MAX_DEGREE: usize = 24;
+
+/// The most samples a checker uses: `samples` of a curve checker are
+/// clamped to it, and the grid side `n` of a surface checker to its square
+/// root (64).
+pub const MAX_SAMPLES: usize = 4096;
+
+/// `scale` moved into `[min, max]`; NaN becomes `min`.
+fn clamp_scale(scale: f64, min: f64, max: f64) -> f64 {
+    if scale >= min { scale.min(max) } else { min }
+}
+
+/// The degree range clamped to `0 ..= MAX_DEGREE`; an empty range means its
+/// start.
+fn clamp_degrees(degrees: &RangeInclusive<usize>) -> RangeInclusive<usize> {
+    let lo = (*degrees.start()).min(MAX_DEGREE);
+    let hi = (*degrees.end()).clamp(lo, MAX_DEGREE);
+    lo..=hi
+}
+
+/// A point with coordinates in `[−scale, scale]`. `scale` is clamped into
+/// `[0, MAX_COORDINATE]` (NaN and negative values give 0).
 pub fn point<const D: usize>(scale: f64) -> impl Strategy<Value = Point<f64, D>> {
+    let scale = clamp_scale(scale, 0.0, crate::MAX_COORDINATE);
     proptest::array::uniform::<_, D>(-scale..=scale).prop_map(|c| Point::from(SVector::from(c)))
 }
 
 /// A Bézier curve with a degree in `degrees` and coordinates in
-/// `[−scale, scale]`.
+/// `[−scale, scale]`. Degrees are clamped to [`MAX_DEGREE`] (an empty
+/// range means its start), `scale` as for [`point`].
 pub fn bezier_curve<const D: usize>(
     degrees: RangeInclusive<usize>,
     scale: f64,
 ) -> impl Strategy<Value = Bezier<D>> {
-    degrees
+    clamp_degrees(&degrees)
         .prop_flat_map(move |n| proptest::collection::vec(point::<D>(scale), n + 1))
-        .prop_map(|pts| Bezier::new(pts).unwrap_or_else(|_| unreachable!("finite points")))
+        .prop_filter_map("a valid Bézier curve", |pts| Bezier::new(pts).ok())
 }
 
 /// A B-spline with a degree in `degrees`, `degree + 1 … degree + 8` control
@@ -72,12 +101,12 @@ pub fn bezier_curve<const D: usize>(
 /// vector: distinct interior knots with random spacing, and ends either
 /// clamped (`degree + 1` equal knots) or spaced like the interior (so the
 /// curve is smooth on its whole domain and its derivatives can be checked
-/// anywhere).
+/// anywhere). Degrees and `scale` are clamped as for [`bezier_curve`].
 pub fn bspline_curve<const D: usize>(
     degrees: RangeInclusive<usize>,
     scale: f64,
 ) -> impl Strategy<Value = BSpline<D>> {
-    degrees
+    clamp_degrees(&degrees)
         .prop_flat_map(move |p| {
             (
                 Just(p),
@@ -103,14 +132,18 @@ pub fn bspline_curve<const D: usize>(
                 knots[..p].fill(start);
                 knots[n + 1..].fill(end);
             }
-            BSpline::new(p, knots, pts).unwrap_or_else(|e| unreachable!("valid knots: {e}"))
+            BSpline::new(p, knots, pts)
         })
+        .prop_filter_map("a valid B-spline", Result::ok)
 }
 
 /// A profile for a surface of revolution: a uniform B-spline of degree 2 or
-/// 3 (so its tangent is continuous) with 4–12 control points, `x ∈ [0.05, scale]`, heights strictly
-/// increasing (so the surface is a simple tube).
+/// 3 (so its tangent is continuous) with 4–12 control points,
+/// `x ∈ [0.05·scale, scale]`, heights strictly increasing (so the surface is
+/// a simple tube). `scale` is clamped into `[1e-100, MAX_COORDINATE/8]`
+/// (heights reach `±3·scale`); NaN and non-positive values give `1e-100`.
 pub fn profile(scale: f64) -> impl Strategy<Value = BSpline<2>> {
+    let scale = clamp_scale(scale, 1e-100, crate::MAX_COORDINATE / 8.0);
     (2usize..=3, 4usize..=12)
         .prop_flat_map(move |(p, n)| {
             (
@@ -127,13 +160,16 @@ pub fn profile(scale: f64) -> impl Strategy<Value = BSpline<2>> {
                     Point2::new(x, y)
                 })
                 .collect();
-            BSpline::uniform(p, pts).unwrap_or_else(|e| unreachable!("valid profile: {e}"))
+            BSpline::uniform(p, pts)
         })
+        .prop_filter_map("a valid profile", Result::ok)
 }
 
 /// A ray from a point on a sphere of radius `3·scale` about the origin,
-/// aimed at a point in the cube `[−scale, scale]³`.
+/// aimed at a point in the cube `[−scale, scale]³`. `scale` is clamped into
+/// `[1e-100, MAX_COORDINATE]`; NaN and non-positive values give `1e-100`.
 pub fn ray(scale: f64) -> impl Strategy<Value = Ray> {
+    let scale = clamp_scale(scale, 1e-100, crate::MAX_COORDINATE);
     (
         proptest::array::uniform3(-1.0..=1.0f64),
         proptest::array::uniform3(-scale..=scale),
@@ -168,11 +204,16 @@ const LIMIT: f64 = 1e-6;
 /// The limit is `1e-6 ×` the largest derivative magnitude sampled (plus the
 /// same of the point scale over the domain length). Curves whose derivative
 /// jumps (knots of high multiplicity) must be checked per smooth piece.
+/// `samples` is clamped to [`MAX_SAMPLES`]. A domain that is not finite with
+/// `start < end` breaks the [`Curve`] contract and is reported as a
+/// violation.
 pub fn check_curve_derivatives<const D: usize, C: Curve<D>>(
     curve: &C,
     samples: usize,
 ) -> Result<(), LawViolation> {
+    let samples = samples.min(MAX_SAMPLES);
     let (a, b) = curve.domain();
+    check_interval(a, b)?;
     let len = b - a;
     let h = f64::EPSILON.sqrt() * len;
     let ts: Vec<f64> = (0..samples)
@@ -210,10 +251,38 @@ pub fn check_curve_derivatives<const D: usize, C: Curve<D>>(
     Ok(())
 }
 
+/// The law that a parameter interval is finite and not empty.
+fn check_interval(a: f64, b: f64) -> Result<(), LawViolation> {
+    if a.is_finite() && b.is_finite() && a < b {
+        return Ok(());
+    }
+    Err(LawViolation {
+        law: "domain is finite with start < end",
+        at: vec![a, b],
+        error: if a.is_finite() && b.is_finite() {
+            a - b
+        } else {
+            f64::INFINITY
+        },
+        limit: 0.0,
+    })
+}
+
+/// The surface's domain, checked to be finite and non-empty in both
+/// parameters.
+fn checked_domain<S: Surface>(surface: &S) -> Result<[(f64, f64); 2], LawViolation> {
+    let domain = surface.domain();
+    for (a, b) in domain {
+        check_interval(a, b)?;
+    }
+    Ok(domain)
+}
+
 /// Checks `Surface::partials` against central differences of `Surface::eval`
-/// on an `n × n` grid strictly inside the domain.
+/// on an `n × n` grid strictly inside the domain (`n` clamped to
+/// `1 ..= 64`; a domain that is not finite and non-empty is a violation).
 pub fn check_surface_partials<S: Surface>(surface: &S, n: usize) -> Result<(), LawViolation> {
-    let [(u0, u1), (v0, v1)] = surface.domain();
+    let [(u0, u1), (v0, v1)] = checked_domain(surface)?;
     let (hu, hv) = (
         f64::EPSILON.sqrt() * (u1 - u0),
         f64::EPSILON.sqrt() * (v1 - v0),
@@ -249,8 +318,10 @@ pub fn check_surface_partials<S: Surface>(surface: &S, n: usize) -> Result<(), L
 }
 
 /// Checks `Surface::normal` on an `n × n` grid: unit length, perpendicular
-/// to both partials, and along `∂S/∂u × ∂S/∂v` where that is not tiny.
+/// to both partials, and along `∂S/∂u × ∂S/∂v` where that is not tiny
+/// (`n` and the domain as for [`check_surface_partials`]).
 pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), LawViolation> {
+    checked_domain(surface)?;
     for (u, v) in grid(surface, n) {
         let (su, sv) = surface.partials(u, v);
         let cross = su.cross(&sv);
@@ -304,10 +375,11 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
     Ok(())
 }
 
-/// An `n × n` grid of cell centres of the domain.
+/// An `n × n` grid of cell centres of the domain (`n` clamped to
+/// `1 ..= √MAX_SAMPLES`).
 fn grid<S: Surface>(surface: &S, n: usize) -> Vec<(f64, f64)> {
     let [(u0, u1), (v0, v1)] = surface.domain();
-    let n = n.max(1);
+    let n = n.clamp(1, MAX_SAMPLES.isqrt());
     let at = |lo: f64, hi: f64, i: usize| lo + (hi - lo) * (i as f64 + 0.5) / n as f64;
     (0..n)
         .flat_map(|i| (0..n).map(move |j| (at(u0, u1, i), at(v0, v1, j))))

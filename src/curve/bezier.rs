@@ -2,7 +2,8 @@
 
 use super::flatten::{Flattening, flatten_pieces};
 use super::{
-    check_in_domain, clamp_to_domain, point_bounds, tangent_from_derivatives, validate_points,
+    check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, ln_falling, point_bounds,
+    tangent_from_derivatives, validate_points,
 };
 use crate::bernstein::{self, de_casteljau, differentiate_in_place, subdivide};
 use crate::scratch::with_scratch;
@@ -43,17 +44,48 @@ impl<const D: usize> Bezier<D> {
     ///
     /// # Errors
     /// [`Error::NoControlPoints`] for an empty list, [`Error::NonFinitePoint`]
-    /// for a NaN or infinite coordinate.
+    /// for a NaN or infinite coordinate, [`Error::CoordinateTooLarge`] beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), and
+    /// [`Error::DerivativeOverflow`] when the hodograph of some order `k` has
+    /// a control point `n!/(n−k)!·ΔᵏPᵢ` beyond
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE) (high degrees with
+    /// large, alternating coordinates). Derivatives of every order of an
+    /// accepted curve are finite.
     pub fn new(points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
-        Ok(Self::from_valid_points(points))
+        let curve = Self::from_valid_points(points);
+        check_derivatives(&curve.coeffs, 1.0)?;
+        Ok(curve)
     }
 
-    /// Wraps points the crate computed from valid input (finite, non-empty).
+    /// Wraps points the crate computed from valid input (finite, non-empty;
+    /// derived curves such as hodographs may exceed `MAX_COORDINATE`).
     pub(crate) fn from_valid_points(points: Vec<Point<f64, D>>) -> Self {
-        debug_assert!(validate_points(&points).is_ok());
+        debug_assert!(
+            !points.is_empty()
+                && points
+                    .iter()
+                    .all(|p| p.coords.iter().all(|c| c.is_finite()))
+        );
         let coeffs = points.iter().map(|p| p.coords).collect();
         Self { points, coeffs }
+    }
+
+    /// Wraps points that are convex combinations of `hull`'s points
+    /// (subdivision, blossoms), moved into `hull`'s bounding box first: the
+    /// exact values lie there, so this only removes rounding, and the result
+    /// stays within [`MAX_COORDINATE`](crate::MAX_COORDINATE) when `hull` is.
+    pub(crate) fn from_combinations(
+        points: impl IntoIterator<Item = SVector<f64, D>>,
+        hull: &[Point<f64, D>],
+    ) -> Self {
+        let bounds = point_bounds(hull);
+        Self::from_valid_points(
+            points
+                .into_iter()
+                .map(|v| Point::from(clamp_to_box(v, bounds)))
+                .collect(),
+        )
     }
 
     /// The control points.
@@ -106,17 +138,23 @@ impl<const D: usize> Bezier<D> {
     /// Bézier of the same degree reparametrized to `[0, 1]` (de Casteljau
     /// subdivision).
     ///
+    /// The pieces' control points are convex combinations of this curve's
+    /// and are kept in its bounding box (no rounding outside it).
+    ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside `[0, 1]`.
+    /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside `[0, 1]`;
+    /// [`Error::DerivativeOverflow`] if rounding made a piece's derivatives
+    /// exceed the bound of [`new`](Self::new) (only for curves at that bound).
     pub fn subdivide(&self, t: f64) -> Result<(Bezier<D>, Bezier<D>), Error> {
         check_in_domain(t, (0.0, 1.0))?;
         let mut left = self.coeffs.clone();
         let mut right = self.coeffs.clone();
         subdivide(&self.coeffs, t, &mut left, &mut right);
-        let to_curve = |v: Vec<SVector<f64, D>>| {
-            Bezier::from_valid_points(v.into_iter().map(Point::from).collect())
-        };
-        Ok((to_curve(left), to_curve(right)))
+        let left = Bezier::from_combinations(left, &self.points);
+        let right = Bezier::from_combinations(right, &self.points);
+        check_derivatives(&left.coeffs, 1.0)?;
+        check_derivatives(&right.coeffs, 1.0)?;
+        Ok((left, right))
     }
 
     /// The axis-aligned bounding box of the control points, `(min, max)`. By
@@ -171,8 +209,8 @@ impl<const D: usize> Curve<D> for Bezier<D> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.degree();
         let scale = self.coeffs.iter().fold(0.0_f64, |m, c| m.max(c.amax()));
-        let natural = |k: usize| scale * (n - k + 1..=n).map(|x| x as f64).product::<f64>();
-        tangent_from_derivatives(n, t >= 1.0, natural, |k| self.nth_derivative(t, k))
+        let log_natural = |k: usize| scale.ln() + ln_falling(n, k);
+        tangent_from_derivatives(n, t >= 1.0, log_natural, |k| self.nth_derivative(t, k))
     }
 
     #[inline]

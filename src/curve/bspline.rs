@@ -9,7 +9,8 @@
 use super::flatten::{Flattening, flatten_pieces};
 use super::pieces::PieceTable;
 use super::{
-    check_in_domain, clamp_to_domain, point_bounds, tangent_from_derivatives, validate_points,
+    MAX_DERIVATIVE, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, ln_falling,
+    point_bounds, tangent_from_derivatives, validate_points,
 };
 use crate::bernstein::{self, lerp};
 use crate::scratch::with_scratch;
@@ -75,7 +76,12 @@ impl<const D: usize> BSpline<D> {
     /// [`Error::KnotTooLarge`], [`Error::DecreasingKnots`],
     /// [`Error::KnotGapTooSmall`] (distinct knots closer than `4ε ×` the knot
     /// range, which rounding cannot tell apart), [`Error::KnotMultiplicity`]
-    /// (a knot repeated more than `degree + 1` times), [`Error::EmptyDomain`] (`t_p = t_n`).
+    /// (a knot repeated more than `degree + 1` times), [`Error::EmptyDomain`] (`t_p = t_n`),
+    /// [`Error::DerivativeOverflow`] (knots too close for the points: a
+    /// control point of the derivative spline of some order `1 ..= degree`, or
+    /// of a Bézier piece's hodograph in `t` or in its own parameter, beyond
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE)). Derivatives of every
+    /// order of an accepted curve are finite everywhere.
     pub fn new(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
         let n = points.len();
@@ -120,17 +126,39 @@ impl<const D: usize> BSpline<D> {
         if start >= end {
             return Err(Error::EmptyDomain { start, end });
         }
-        Ok(Self::from_valid_parts(degree, knots, points))
+        Self::from_checked_parts(degree, knots, points)
+    }
+
+    /// Builds the curve from valid parts and checks its derivatives
+    /// ([`Error::DerivativeOverflow`]).
+    fn from_checked_parts(
+        degree: usize,
+        knots: Vec<f64>,
+        points: Vec<Point<f64, D>>,
+    ) -> Result<Self, Error> {
+        check_derivative_points(degree, &knots, &points)?;
+        let curve = Self::from_valid_parts(degree, knots, points);
+        for j in 0..curve.pieces.len() {
+            let (a, b) = curve.pieces.interval(j);
+            let coeffs = curve.pieces.coeffs(j);
+            check_derivatives(coeffs, 1.0)?;
+            check_derivatives(coeffs, b - a)?;
+        }
+        Ok(curve)
     }
 
     /// Builds the curve and its piece table from parts already known to be
     /// valid (checked by [`new`](Self::new), or derived from a valid curve).
+    /// The pieces' control points are blossoms, convex combinations of the
+    /// span's control points, kept in their bounding box.
     fn from_valid_parts(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Self {
         let n = points.len();
         let pieces = PieceTable::new(degree, &knots, n, |span, out| {
             let (a, b) = (knots[span], knots[span + 1]);
+            let hull = point_bounds(&points[span - degree..=span]);
             for (r, dst) in out.iter_mut().enumerate() {
-                *dst = blossom(&knots, &points, degree, span, degree - r, a, b);
+                let value = blossom(&knots, &points, degree, span, degree - r, a, b);
+                *dst = clamp_to_box(value, hull);
             }
         });
         Self {
@@ -369,7 +397,23 @@ impl<const D: usize> BSpline<D> {
             }
         }
         knots.extend_from_slice(&inner[n - 1..]);
-        BSpline::from_valid_parts(p - 1, knots, points)
+        // The pieces are the hodographs of this curve's pieces, computed as
+        // `new` checked them, so derivatives of the result stay finite.
+        let mut piece = 0;
+        let pieces = PieceTable::new(p - 1, &knots, points.len(), |_, out| {
+            let (a, b) = self.pieces.interval(piece);
+            let c = self.pieces.coeffs(piece);
+            for (j, dst) in out.iter_mut().enumerate() {
+                *dst = ((c[j + 1] - c[j]) * p as f64) / (b - a);
+            }
+            piece = (piece + 1).min(self.pieces.len() - 1);
+        });
+        BSpline {
+            degree: p - 1,
+            knots,
+            points,
+            pieces,
+        }
     }
 
     /// The `order`-th derivative spline (order 0 is a copy of the curve;
@@ -386,7 +430,9 @@ impl<const D: usize> BSpline<D> {
     /// # Errors
     /// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside the domain;
     /// [`Error::KnotMultiplicity`] if `t` would then occur more than
-    /// `degree + 1` times.
+    /// `degree + 1` times; [`Error::DerivativeOverflow`] if the new pieces'
+    /// rounding broke the bound of [`new`](Self::new) (only for curves at
+    /// that bound).
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<BSpline<D>, Error> {
         check_in_domain(t, self.domain())?;
         // A parameter closer to an existing knot than rounding can resolve
@@ -409,32 +455,31 @@ impl<const D: usize> BSpline<D> {
         }
         let mut curve = self.clone();
         for _ in 0..times {
-            curve = curve.insert_once(t);
+            curve = curve.insert_once(t)?;
         }
         Ok(curve)
     }
 
     /// One Boehm insertion: in span `k` (`t_k ≤ t ≤ t_{k+1}`) the new points are
     /// `Qⱼ = (1 − αⱼ)Pⱼ₋₁ + αⱼPⱼ`, `αⱼ = (t − tⱼ)/(tⱼ₊ₚ − tⱼ)`, `k − p < j ≤ k`.
-    fn insert_once(&self, t: f64) -> BSpline<D> {
+    /// The new points stay in the box of the two they combine.
+    fn insert_once(&self, t: f64) -> Result<BSpline<D>, Error> {
         let p = self.degree;
         let k = self.span_of_clamped(t);
         let mut points = Vec::with_capacity(self.points.len() + 1);
         points.extend_from_slice(&self.points[..=k - p]);
         for j in (k - p + 1)..=k {
             let alpha = (t - self.knots[j]) / (self.knots[j + p] - self.knots[j]);
-            points.push(Point::from(lerp(
-                self.points[j - 1].coords,
-                self.points[j].coords,
-                alpha,
-            )));
+            let pair = &self.points[j - 1..=j];
+            let q = lerp(pair[0].coords, pair[1].coords, alpha);
+            points.push(Point::from(clamp_to_box(q, point_bounds(pair))));
         }
         points.extend_from_slice(&self.points[k..]);
         let mut knots = Vec::with_capacity(self.knots.len() + 1);
         knots.extend_from_slice(&self.knots[..=k]);
         knots.push(t);
         knots.extend_from_slice(&self.knots[k + 1..]);
-        BSpline::from_valid_parts(p, knots, points)
+        BSpline::from_checked_parts(p, knots, points)
     }
 
     /// The polynomial pieces of the curve as Bézier curves, one per non-empty
@@ -517,10 +562,8 @@ impl<const D: usize> Curve<D> for BSpline<D> {
             .points
             .iter()
             .fold(0.0_f64, |m, c| m.max(c.coords.amax()));
-        let natural = |k: usize| {
-            scale * (p - k + 1..=p).map(|x| x as f64).product::<f64>() / (b - a).powi(k as i32)
-        };
-        tangent_from_derivatives(p, t >= domain.1, natural, |k| self.nth_derivative(t, k))
+        let log_natural = |k: usize| scale.ln() + ln_falling(p, k) - k as f64 * (b - a).ln();
+        tangent_from_derivatives(p, t >= domain.1, log_natural, |k| self.nth_derivative(t, k))
     }
 
     /// As [`eval`](Curve::eval); the derivative of the piece's Bézier form is
@@ -631,6 +674,38 @@ fn basis_up_to(
 #[inline]
 fn safe_div(num: f64, den: f64) -> f64 {
     if den > 0.0 { num / den } else { 0.0 }
+}
+
+/// Checks the control points of the derivative splines of orders
+/// `1 ..= degree`, computed as [`BSpline::nth_derivative`] computes them,
+/// `Q⁽ʳ⁾ᵢ = (Q⁽ʳ⁻¹⁾ᵢ₊₁ − Q⁽ʳ⁻¹⁾ᵢ)/(tᵢ₊ₚ₊₁ − tᵢ₊ᵣ)·(p − r + 1)`: each must be
+/// within [`MAX_DERIVATIVE`]. Points whose knot difference is zero (their basis
+/// function vanishes; no non-empty span uses them) are skipped, and so is
+/// everything computed from them.
+fn check_derivative_points<const D: usize>(
+    degree: usize,
+    knots: &[f64],
+    points: &[Point<f64, D>],
+) -> Result<(), Error> {
+    let mut q: Vec<Option<SVector<f64, D>>> = points.iter().map(|p| Some(p.coords)).collect();
+    for order in 1..=degree {
+        let scale = (degree - order + 1) as f64;
+        for i in 0..q.len() - 1 {
+            let den = knots[i + degree + 1] - knots[i + order];
+            q[i] = match (q[i], q[i + 1]) {
+                (Some(a), Some(b)) if den > 0.0 => {
+                    let d = (b - a) / den * scale;
+                    if !d.iter().all(|x| x.abs() <= MAX_DERIVATIVE) {
+                        return Err(Error::DerivativeOverflow { order });
+                    }
+                    Some(d)
+                }
+                _ => None,
+            };
+        }
+        q.pop();
+    }
+    Ok(())
 }
 
 fn check_degree(degree: usize, points: usize) -> Result<(), Error> {

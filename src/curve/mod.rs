@@ -33,6 +33,16 @@ pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
 use crate::Error;
 use nalgebra::{Point, SVector, Unit};
 
+/// The most segments [`Curve::discretize`] makes (`2²⁴`, so at most
+/// `2²⁴ + 1` samples); [`Curve::try_discretize`] refuses more.
+pub const MAX_SEGMENTS: usize = 1 << 24;
+
+/// The largest derivative magnitude a [`Bezier`] or [`BSpline`] may have
+/// (`1e300`): constructors refuse curves whose derivatives of some order could
+/// exceed it ([`Error::DerivativeOverflow`]), so that every derivative of an
+/// accepted curve, of any order, is finite.
+pub const MAX_DERIVATIVE: f64 = 1e300;
+
 /// A parametric curve in `D` dimensions.
 ///
 /// Implementors provide the domain, the point and the first derivative; the
@@ -94,21 +104,24 @@ pub trait Curve<const D: usize> {
     ///
     /// The default falls back to a short chord (`10⁻⁶` of the domain) when the
     /// derivative is exactly zero; the crate's curves use their exact higher
-    /// derivatives instead.
+    /// derivatives instead. Vectors are scaled by their largest component
+    /// before normalizing, so derivatives of any finite size (`1e-320` to
+    /// `1e308`) give a unit tangent; a NaN or infinite derivative gives `None`.
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
         let d = self.derivative(t);
         if d != SVector::<f64, D>::zeros() {
-            return Unit::try_new(d, 0.0);
+            return unit_direction(d);
         }
         let (a, b) = self.domain();
-        let h = (b - a) * 1e-6;
+        // Scaled before subtracting: no overflow for ends near ±f64::MAX.
+        let h = b * 1e-6 - a * 1e-6;
         let t = clamp_to_domain(t, (a, b));
         let chord = if t + h <= b {
             self.eval(t + h) - self.eval(t)
         } else {
             self.eval(t) - self.eval(t - h)
         };
-        Unit::try_new(chord, 0.0)
+        unit_direction(chord)
     }
 
     /// The curve as a sequence of Bézier pieces in parameter order, if it is
@@ -126,26 +139,49 @@ pub trait Curve<const D: usize> {
     /// first derivative. The first and last parameters are exactly `a` and `b`.
     ///
     /// `segments == 0` is treated as `1` (the two end points), so the result
-    /// always spans the whole curve.
+    /// always spans the whole curve; more than [`MAX_SEGMENTS`] are capped to
+    /// it. If the samples cannot be allocated the result is empty (use
+    /// [`try_discretize`](Curve::try_discretize) to get the error).
+    ///
+    /// A domain that breaks the [contract](Curve#contract) is sampled as
+    /// given: a reversed one from `a` down to `b`; a NaN or infinite end
+    /// gives NaN or infinite parameters, passed to `eval` as they are. It
+    /// never panics.
     fn discretize(&self, segments: usize) -> Vec<CurveSample<D>> {
+        self.try_discretize(segments.min(MAX_SEGMENTS))
+            .unwrap_or_default()
+    }
+
+    /// As [`discretize`](Curve::discretize), with the limits reported.
+    ///
+    /// # Errors
+    /// [`Error::TooManySegments`] above [`MAX_SEGMENTS`];
+    /// [`Error::AllocationFailed`] if the samples cannot be allocated.
+    fn try_discretize(&self, segments: usize) -> Result<Vec<CurveSample<D>>, Error> {
+        if segments > MAX_SEGMENTS {
+            return Err(Error::TooManySegments {
+                segments,
+                max: MAX_SEGMENTS,
+            });
+        }
         let segments = segments.max(1);
         let (a, b) = self.domain();
-        (0..=segments)
-            .map(|i| {
-                let s = i as f64 / segments as f64;
-                let t = if i == segments {
-                    b
-                } else {
-                    a * (1.0 - s) + b * s
-                };
-                let (point, derivative) = self.eval_with_derivative(t);
-                CurveSample {
-                    t,
-                    point,
-                    derivative,
-                }
-            })
-            .collect()
+        let mut samples = crate::error::try_with_capacity(segments + 1)?;
+        samples.extend((0..=segments).map(|i| {
+            let s = i as f64 / segments as f64;
+            let t = match i {
+                0 => a,
+                i if i == segments => b,
+                _ => a * (1.0 - s) + b * s,
+            };
+            let (point, derivative) = self.eval_with_derivative(t);
+            CurveSample {
+                t,
+                point,
+                derivative,
+            }
+        }));
+        Ok(samples)
     }
 }
 
@@ -210,26 +246,114 @@ pub(crate) fn point_bounds<const D: usize>(
     (Point::from(lo), Point::from(hi))
 }
 
+/// `v / |v|`, computed as `(v/m) / |v/m|` with `m` the largest absolute
+/// component, so that no size of `v` overflows or underflows the norm.
+/// `None` for the zero vector and for vectors with a NaN or infinite
+/// component.
+pub(crate) fn unit_direction<const D: usize>(v: SVector<f64, D>) -> Option<Unit<SVector<f64, D>>> {
+    let m = v.amax();
+    if !(m > 0.0 && v.iter().all(|c| c.is_finite())) {
+        return None;
+    }
+    Unit::try_new(v / m, 0.0)
+}
+
+/// `v` moved into the box `[lo, hi]` (per coordinate). For a convex
+/// combination of points whose box that is, this only removes rounding: the
+/// exact value lies in the box.
+#[inline]
+pub(crate) fn clamp_to_box<const D: usize>(
+    v: SVector<f64, D>,
+    (lo, hi): (Point<f64, D>, Point<f64, D>),
+) -> SVector<f64, D> {
+    v.sup(&lo.coords).inf(&hi.coords)
+}
+
 /// The unit tangent from the first derivative of order `1 ..= max_order`
 /// that is not negligible, oriented toward increasing `t`.
 ///
 /// Near `t₀` the curve is `C(t₀) + C⁽ᵏ⁾(t₀)(t − t₀)ᵏ/k! + …`, so the limit of
 /// the tangent from the right is `C⁽ᵏ⁾` and from the left (`from_left`, used at
 /// the end of the domain) `(−1)ᵏ⁺¹ C⁽ᵏ⁾`. Derivative `k` counts as zero when
-/// it is below `1e-12 · natural(k)`, its size for a curve of that scale.
+/// it is below `1e-12 · natural(k)`, its size for a curve of that scale;
+/// `log_natural(k)` gives `ln natural(k)`, and the comparison is made in
+/// logarithms so that neither side overflows.
 pub(crate) fn tangent_from_derivatives<const D: usize>(
     max_order: usize,
     from_left: bool,
-    natural: impl Fn(usize) -> f64,
+    log_natural: impl Fn(usize) -> f64,
     nth: impl Fn(usize) -> SVector<f64, D>,
 ) -> Option<Unit<SVector<f64, D>>> {
+    const LN_NEGLIGIBLE: f64 = -27.631_021_115_928_547; // ln 1e-12
     for k in 1..=max_order {
         let d = nth(k);
-        let norm = d.norm();
-        if norm > 1e-12 * natural(k) && norm > 0.0 {
+        let Some(unit) = unit_direction(d) else {
+            continue;
+        };
+        let m = d.amax();
+        let log_norm = m.ln() + (d / m).norm().ln();
+        if log_norm > LN_NEGLIGIBLE + log_natural(k) {
             let flip = from_left && k % 2 == 0;
-            return Unit::try_new(if flip { -d } else { d }, 0.0);
+            return Some(if flip { -unit } else { unit });
         }
     }
     None
+}
+
+/// `ln(n!/(n − k)!)`, the log of the falling factorial `n(n − 1)…(n − k + 1)`.
+pub(crate) fn ln_falling(n: usize, k: usize) -> f64 {
+    (n + 1 - k.min(n)..=n).map(|x| (x as f64).ln()).sum()
+}
+
+/// Checks that the derivatives of orders `1 ..= n` of the Bézier piece with
+/// coefficients `c` (degree `n = c.len() − 1`) on a parameter interval of
+/// width `w` stay within [`MAX_DERIVATIVE`] as the crate evaluates them.
+///
+/// The order-`k` hodograph's coefficients are computed as the evaluators
+/// compute them, `h⁽ᵏ⁾ᵢ = ((h⁽ᵏ⁻¹⁾ᵢ₊₁ − h⁽ᵏ⁻¹⁾ᵢ)·(n − k + 1))/w`, so de Casteljau
+/// on them (a convex combination) stays within their maximum. The derivative
+/// of order `k` can also be computed by de Casteljau on order `k − 1` and a
+/// difference of its last level, whose rounding adds at most
+/// `4n²ε·max|h⁽ᵏ⁻¹⁾|/w`; that is added to the maximum before comparing.
+///
+/// # Errors
+/// [`Error::DerivativeOverflow`] with the first order that could exceed it.
+pub(crate) fn check_derivatives<const D: usize>(
+    c: &[SVector<f64, D>],
+    w: f64,
+) -> Result<(), Error> {
+    let n = c.len().saturating_sub(1);
+    let rounding = 4.0 * (n as f64) * (n as f64) * f64::EPSILON;
+    let magnitude = |h: &[SVector<f64, D>]| {
+        h.iter().fold(0.0_f64, |m, v| {
+            v.iter().fold(m, |m, x| {
+                if x.is_nan() {
+                    f64::INFINITY
+                } else {
+                    m.max(x.abs())
+                }
+            })
+        })
+    };
+    crate::scratch::with_scratch(c.len(), SVector::zeros(), |h| {
+        h.copy_from_slice(c);
+        let mut previous = magnitude(h);
+        for order in 1..=n {
+            let len = n + 1 - order;
+            let factor = len as f64;
+            for j in 0..len {
+                h[j] = ((h[j + 1] - h[j]) * factor) / w;
+            }
+            let current = magnitude(&h[..len]);
+            if !(current + rounding * previous / w <= MAX_DERIVATIVE) {
+                return Err(Error::DerivativeOverflow { order });
+            }
+            if current == 0.0 {
+                // Every higher derivative is zero too.
+                break;
+            }
+            previous = current;
+        }
+        Ok(())
+    })
 }

@@ -70,6 +70,18 @@
 //! ray (`−d/|d|`). No hit ever holds NaN: non-finite rays and non-finite
 //! results are misses.
 //!
+//! # Edge rules of the query
+//! - The search runs on the unit direction `d/|d|` (found without overflow
+//!   from `d`'s largest component), so any finite non-zero `d` works, of
+//!   length `1e-300` as well as `1e300`; `t` is converted back to units of
+//!   `|d|`. A hit whose `t` is then not finite, or no longer strictly inside
+//!   `(t_min, t_max)` after the conversion's rounding, is a miss.
+//! - A NaN or infinite origin, a zero, NaN or infinite direction, a NaN
+//!   `t_min` or `t_max`, or `t_min ≥ t_max` is a miss.
+//! - The [`Tolerance`] is used clamped: `relative` into `[ε, 10⁻³]` (NaN
+//!   means the default `4ε`), `max_iterations` into `1 ..= 1000`, so no
+//!   setting can make a query run without end.
+//!
 //! # Cost
 //! Building evaluates [`bound_patch`](BoundedSurface::bound_patch) once per
 //! leaf (`2^depth` leaves, `depth ≤` [`MAX_DEPTH`]). A query allocates
@@ -443,29 +455,68 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
     /// intersector's tolerance and scale (the building block of the search,
     /// for studies of the method itself). Parameters outside the domain are
     /// first clamped (or reduced, if periodic).
+    ///
+    /// The run works on the unit direction like the search (`t` converted
+    /// both ways). A ray without a finite origin and a finite non-zero
+    /// direction gives a run that `Diverged` at its start, not converged.
     pub fn newton(&self, ray: &Ray, t: f64, u: f64, v: f64) -> NewtonRun {
-        self.run(ray, t, (u, v), &self.limits())
+        match UnitRay::new(ray) {
+            Some(units) => {
+                let run = self.run(&units.ray, units.to_unit(t), (u, v), &self.limits());
+                units.run_from_unit(run)
+            }
+            None => NewtonRun {
+                t,
+                uv: (u, v),
+                residual: f64::INFINITY,
+                iterations: 0,
+                finish: NewtonFinish::Diverged,
+                converged: false,
+            },
+        }
     }
 
     fn limits(&self) -> Limits {
-        let target = self.tolerance.relative * self.scale;
+        let tolerance = self.tolerance.clamped();
         Limits {
-            target,
-            accept: self.tolerance.relative.max(ACCEPT) * self.scale,
-            max_iterations: self.tolerance.max_iterations,
+            target: tolerance.relative * self.scale,
+            accept: tolerance.relative.max(ACCEPT) * self.scale,
+            max_iterations: tolerance.max_iterations,
         }
     }
 
-    /// The traversal, with optional bookkeeping.
+    /// The traversal on the ray with unit direction, with optional
+    /// bookkeeping; `t` of the hit and of the recorded runs in the caller's
+    /// units.
     #[inline]
     fn search<R: Recorder>(&self, ray: &Ray, t_min: f64, t_max: f64, rec: &mut R) -> Option<Hit> {
-        let dn = ray.dir.norm();
-        let finite = ray.origin.coords.iter().all(|c| c.is_finite());
-        if !(dn > 0.0 && dn.is_finite() && finite) || t_min.is_nan() || t_max.is_nan() {
+        let units = UnitRay::new(ray)?;
+        if !(t_min < t_max) {
             return None;
         }
+        let hit = self.search_unit(&units, units.to_unit(t_min), units.to_unit(t_max), rec)?;
+        let t = units.from_unit(hit.t);
+        if t.is_finite() && t > t_min && t < t_max {
+            Some(Hit { t, ..hit })
+        } else {
+            rec.discard_hit();
+            None
+        }
+    }
+
+    /// [`search`](Self::search) with `t`, `t_min`, `t_max` as lengths along
+    /// the unit direction `units.ray.dir`.
+    #[inline]
+    fn search_unit<R: Recorder>(
+        &self,
+        units: &UnitRay,
+        t_min: f64,
+        t_max: f64,
+        rec: &mut R,
+    ) -> Option<Hit> {
+        let ray = &units.ray;
         let limits = self.limits();
-        let t_floor = t_min + limits.accept / dn;
+        let t_floor = t_min + limits.accept;
         let mut t_best = t_max;
         let mut best: Option<NewtonRun> = None;
         let first_leaf = (1usize << self.depth) - 1;
@@ -489,11 +540,12 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
                 let patch = &self.nodes[i];
                 let centre = (0.5 * (patch.u.0 + patch.u.1), 0.5 * (patch.v.0 + patch.v.1));
                 let c = self.surface.eval(centre.0, centre.1);
-                let t0 =
-                    ((c - ray.origin).dot(&ray.dir) / (dn * dn)).clamp(enter, exit.min(t_best));
+                let t0 = (c - ray.origin).dot(&ray.dir);
+                // `max` then `min`: a NaN projection starts at the entry.
+                let t0 = t0.max(enter).min(exit.min(t_best));
                 let run = self.run(ray, t0, centre, &limits);
                 let accepted = run.converged && run.t > t_floor && run.t < t_best;
-                rec.run(&run, accepted);
+                rec.run(&units.run_from_unit(run), accepted);
                 if accepted {
                     t_best = run.t;
                     best = Some(run);
@@ -525,7 +577,7 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
         let run = best?;
         let (u, v) = run.uv;
         let point = self.surface.eval(u, v);
-        if !point.coords.iter().all(|c| c.is_finite()) {
+        if !(point.coords.iter().all(|c| c.is_finite()) && u.is_finite() && v.is_finite()) {
             rec.discard_hit();
             return None;
         }
@@ -533,7 +585,7 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
             .surface
             .normal(u, v)
             .filter(|n| n.iter().all(|c| c.is_finite()))
-            .unwrap_or_else(|| Unit::new_unchecked(-ray.dir / dn));
+            .unwrap_or_else(|| Unit::new_unchecked(-ray.dir));
         Some(Hit {
             t: run.t,
             point,
@@ -558,10 +610,10 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
         (x.clamp(a, b), true)
     }
 
-    /// Newton's method on `F(t, u, v) = o + t·d − S(u, v)` from `(t, uv)`.
+    /// Newton's method on `F(t, u, v) = o + t·d − S(u, v)` from `(t, uv)`,
+    /// for a unit direction `d`.
     fn run(&self, ray: &Ray, t: f64, uv: (f64, f64), limits: &Limits) -> NewtonRun {
         let (o, d) = (ray.origin, ray.dir);
-        let dn = d.norm();
         let residual = |t: f64, u: f64, v: f64| o + d * t - self.surface.eval(u, v).coords;
         let (mut u, _) = self.confine(0, uv.0);
         let (mut v, _) = self.confine(1, uv.1);
@@ -589,7 +641,7 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
                 break NewtonFinish::Diverged;
             }
             iterations += 1;
-            let moved = step.x.abs() * dn + step.y.abs() * su.norm() + step.z.abs() * sv.norm();
+            let moved = step.x.abs() + step.y.abs() * su.norm() + step.z.abs() * sv.norm();
             let (u_new, u_clamped) = self.confine(0, u + step.y);
             let (v_new, v_clamped) = self.confine(1, v + step.z);
             // On the edge already and pushed out again: the root is outside.
@@ -625,6 +677,60 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
             converged: finish != NewtonFinish::IterationCap
                 && residual <= limits.accept
                 && t.is_finite(),
+        }
+    }
+}
+
+/// A ray with its direction scaled to unit length, and the conversion of
+/// `t` between the caller's units (`|dir|`) and lengths.
+#[derive(Debug, Clone, Copy)]
+struct UnitRay {
+    /// The same origin, direction `dir/|dir|`.
+    ray: Ray,
+    /// The largest absolute component `m` of the caller's direction.
+    largest: f64,
+    /// `|dir/m|`, in `[1, √3]`: `|dir| = m·|dir/m|`, kept as two factors so
+    /// that no direction of finite components overflows or underflows.
+    norm_of_scaled: f64,
+}
+
+impl UnitRay {
+    /// `None` for a NaN or infinite origin, or a direction that is zero or
+    /// not finite.
+    fn new(ray: &Ray) -> Option<Self> {
+        let largest = ray.dir.amax();
+        let finite = ray
+            .origin
+            .iter()
+            .chain(ray.dir.iter())
+            .all(|c| c.is_finite());
+        if !(finite && largest > 0.0) {
+            return None;
+        }
+        let scaled = ray.dir / largest;
+        let norm_of_scaled = scaled.norm();
+        Some(UnitRay {
+            ray: Ray::new(ray.origin, scaled / norm_of_scaled),
+            largest,
+            norm_of_scaled,
+        })
+    }
+
+    /// A ray parameter in the caller's units as a length.
+    fn to_unit(&self, t: f64) -> f64 {
+        t * self.largest * self.norm_of_scaled
+    }
+
+    /// A length along the ray as a ray parameter in the caller's units.
+    fn from_unit(&self, length: f64) -> f64 {
+        length / self.norm_of_scaled / self.largest
+    }
+
+    /// The run with its `t` in the caller's units.
+    fn run_from_unit(&self, run: NewtonRun) -> NewtonRun {
+        NewtonRun {
+            t: self.from_unit(run.t),
+            ..run
         }
     }
 }

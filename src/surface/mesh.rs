@@ -15,15 +15,12 @@
 //! of the mesh; the tolerance is split evenly between the two terms.
 
 use crate::curve::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
+use crate::error::try_with_capacity;
 use crate::surface::revolution::profile_normal;
 use crate::{Curve, Error, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 use std::f64::consts::{PI, TAU};
 use std::io::{self, Write};
-
-/// The most vertices [`Revolution::tessellate`] makes (2²⁴, about 1 GiB of
-/// mesh); tolerances that would need more are refused.
-const MAX_VERTICES: usize = 1 << 24;
 
 /// The most angular steps [`Revolution::tessellate`] uses; tolerances that
 /// would need more are refused (`ToleranceTooSmall`).
@@ -57,6 +54,11 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// The most vertices [`Revolution::tessellate`] makes (`2²⁴`; with
+    /// normals, parameters and about two triangles per vertex, about 1.4 GB);
+    /// tolerances that would need more are refused.
+    pub const MAX_VERTICES: usize = 1 << 24;
+
     /// Writes the mesh as Wavefront OBJ (`v`, `vt`, `vn` and `f v/vt/vn`
     /// lines; indices are 1-based). `vt` holds the surface parameters
     /// `(u, v)` as they are (not normalized to `[0, 1]`).
@@ -97,8 +99,10 @@ impl<C: Curve<2>> Revolution<C> {
     /// [`Error::InvalidTolerance`]; [`Error::ToleranceTooSmall`] below what
     /// flattening certifies (for half the tolerance), below what 65536
     /// angular steps reach, or where the mesh would exceed 2²⁴ vertices (its
-    /// `min` is a tolerance that fits); [`Error::NotPiecewisePolynomial`] for a profile without
-    /// [Bézier spans](Curve::bezier_spans) (no certified bound is possible).
+    /// `min` is a tolerance that fits, see [`Mesh::MAX_VERTICES`]);
+    /// [`Error::NotPiecewisePolynomial`] for a profile without
+    /// [Bézier spans](Curve::bezier_spans) (no certified bound is possible);
+    /// [`Error::AllocationFailed`] if the memory for the mesh cannot be had.
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
         let Plan {
             flat,
@@ -116,11 +120,12 @@ impl<C: Curve<2>> Revolution<C> {
         };
         let columns = steps + 1;
         let rings = flat.samples.len();
+        let vertices = rings * columns;
         let mut mesh = Mesh {
-            positions: Vec::with_capacity(rings * columns),
-            normals: Vec::with_capacity(rings * columns),
-            uvs: Vec::with_capacity(rings * columns),
-            triangles: Vec::new(),
+            positions: try_with_capacity(vertices)?,
+            normals: try_with_capacity(vertices)?,
+            uvs: try_with_capacity(vertices)?,
+            triangles: try_with_capacity(2 * rings.saturating_sub(1) * steps)?,
             bound: flat.bound + sagitta,
         };
         let up = Unit::new_unchecked(self.to_world().rotation * Vector3::y());
@@ -219,10 +224,10 @@ impl<C: Curve<2>> Revolution<C> {
         // The vertex count grows like 1/tolerance; refuse meshes beyond the
         // budget with the tolerance that would fit it.
         let vertices = rings as f64 * columns as f64;
-        if vertices > MAX_VERTICES as f64 {
+        if vertices > Mesh::MAX_VERTICES as f64 {
             return Err(Error::ToleranceTooSmall {
                 tolerance,
-                min: tolerance * vertices / MAX_VERTICES as f64 * 1.25,
+                min: tolerance * vertices / Mesh::MAX_VERTICES as f64 * 1.25,
             });
         }
         Ok(Plan {
