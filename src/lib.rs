@@ -17,14 +17,17 @@
 //! - the Bernstein-basis kernels in [`bernstein`] and root isolation in
 //!   [`roots`].
 //!
-//! Surfaces and rays (in progress):
+//! Surfaces and rays:
 //!
 //! - [`Revolution`]: a profile turned about an axis ([`Surface`], with
 //!   analytic partials and limit normals on the axis), placeable anywhere,
-//!   tessellated with a certified bound ([`Mesh`]);
+//!   tessellated with a certified bound ([`Mesh`]); any [`Curve`] can be the
+//!   profile ([`Revolution::try_new`] checks the trait's contract);
 //! - [`Intersect`] for revolutions: the exact intersector (the angle
-//!   eliminated, one polynomial per profile span, every root isolated), and
-//!   [`NewtonIntersector`] for any [`BoundedSurface`];
+//!   eliminated, one polynomial per profile span, every root isolated) for
+//!   profiles with Bézier spans, the same on a cubic approximation refined
+//!   by Newton's method for other profiles, and [`NewtonIntersector`] for
+//!   any [`BoundedSurface`]; accuracy is a [`Tolerance`];
 //! - feature `testing`: proptest strategies and law checkers for your own
 //!   curves and surfaces.
 //!
