@@ -64,6 +64,13 @@ pub fn binomial(n: usize, k: usize) -> f64 {
     exact as f64
 }
 
+/// The row `C(n, 0), …, C(n, n)` of [`binomial`]s (the same values): for
+/// loops over products of binomials, which would otherwise recompute each
+/// one (`O(n)` apiece).
+pub fn binomial_row(n: usize) -> Vec<f64> {
+    (0..=n).map(|k| binomial(n, k)).collect()
+}
+
 /// The Bernstein basis polynomial `Bᵢⁿ(t) = C(n, i) tⁱ (1 − t)ⁿ⁻ⁱ`; zero when `i > n`.
 pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
     if i > n {

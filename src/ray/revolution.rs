@@ -48,7 +48,7 @@ use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use super::turn_angle::turn_angle;
-use crate::bernstein::{Polynomial, binomial, eval_with_derivative};
+use crate::bernstein::{Polynomial, binomial_row, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
@@ -363,9 +363,11 @@ impl SpanTable {
             });
         }
         let n = degree;
+        let (row, row2) = (binomial_row(n), binomial_row(2 * n));
         let weights = (0..=n)
             .flat_map(|i| {
-                (0..=n).map(move |j| binomial(n, i) * binomial(n, j) / binomial(2 * n, i + j))
+                let (row, row2) = (&row, &row2);
+                (0..=n).map(move |j| row[i] * row[j] / row2[i + j])
             })
             .collect();
         let r_max = table.iter().fold(0.0_f64, |m, s| m.max(s.r.1));
