@@ -32,6 +32,9 @@ mod render_tests;
 #[cfg(test)]
 mod golden_tests;
 
+#[cfg(test)]
+mod shadow_tests;
+
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

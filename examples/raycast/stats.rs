@@ -12,7 +12,8 @@ use crate::geometry::IntersectStats;
 /// Rays traced, by kind.
 ///
 /// - `primary`: camera rays, one per pixel sample;
-/// - `shadow`: visibility tests towards a light sample;
+/// - `shadow`: visibility tests towards a light sample, plus one for each
+///   transparent surface a shadow ray is continued past;
 /// - `reflection`: mirror rays (including the Fresnel-reflected part of a
 ///   dielectric);
 /// - `refraction`: rays transmitted through a dielectric surface;

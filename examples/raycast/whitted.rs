@@ -6,11 +6,16 @@
 //!
 //! ```text
 //! colour = emission                                   (emissive objects only)
-//!        + Σ delta lights  Phong(L)                   × visible   (hard shadows only)
-//!        + Σ area lights   1/k Σᵢ Phong(Lᵢ)           × visibleᵢ  (k stratified samples)
+//!        + Σ delta lights  Phong(L)                   ⊙ shadow    (hard shadows only)
+//!        + Σ area lights   1/k Σᵢ Phong(Lᵢ)           ⊙ shadowᵢ   (k stratified samples)
 //!        + (reflectivity + transparency·F) ⊙ trace(reflected)        (depth < maxDepth)
 //!        + transparency·(1 − F) ⊙ trace(refracted)                    (depth < maxDepth)
 //! ```
+//!
+//! `shadow` is 0 when an opaque surface lies between the point and the
+//! light, 1 when nothing does, and with transparent materials in the scene
+//! the product of the transmissions of the transparent surfaces in between
+//! ([`Tracer::transmittance`]).
 //!
 //! An area light (or a sampled emitter) is treated as `k` point lights of
 //! its full colour at stratified points of its surface, averaged: it is as
@@ -77,10 +82,14 @@ pub fn trace(
         let Some((l, dist)) = light.toward(&p) else {
             continue;
         };
-        if effects.hard_shadows && !tracer.visible(&p, &n, &l, dist, stats) {
-            continue;
+        let mut arriving = *light.color();
+        if effects.hard_shadows {
+            match tracer.transmittance(&p, &n, &l, dist, stats) {
+                Some(kept) => arriving = arriving.component_mul(&kept),
+                None => continue,
+            }
         }
-        color += shading::phong(&kd, material, &n, &v, &l, light.color());
+        color += shading::phong(&kd, material, &n, &v, &l, &arriving);
     }
     if effects.area_lights || effects.emissive {
         color += area_lights(tracer, &p, &n, &v, &kd, material, rng, stats);
@@ -148,10 +157,14 @@ fn area_lights(
             return;
         }
         let l = w / dist;
-        if effects.soft_shadows && !tracer.visible(p, n, &l, dist, stats) {
-            return;
+        let mut arriving = *light;
+        if effects.soft_shadows {
+            match tracer.transmittance(p, n, &l, dist, stats) {
+                Some(kept) => arriving = arriving.component_mul(&kept),
+                None => return,
+            }
         }
-        color += shading::phong(kd, material, n, v, &l, light) * scale;
+        color += shading::phong(kd, material, n, v, &l, &arriving) * scale;
     };
     for light in &tracer.lights.area {
         for i in 0..k {
