@@ -729,11 +729,31 @@ fn the_command_line_writes_the_png_and_fails_cleanly() {
         out.display().to_string(),
         "--quiet".into(),
     ];
-    crate::cli::run(args).unwrap();
+    crate::cli::run(args.clone()).unwrap();
     let png = image::open(&out).unwrap().to_rgb8();
     assert_eq!(png.dimensions(), (33, 33));
     // Background 0.1 0.2 0.3 written linearly: int(c·255).
     assert_eq!(png.get_pixel(0, 0).0, [25, 51, 76]);
+
+    // A warning prints (to the given stream) even under --quiet, and the
+    // render goes on.
+    std::fs::write(&scene_path, PARSED_SCENE.replace("angle 40", "angle 0.7")).unwrap();
+    let mut warnings = Vec::new();
+    crate::cli::run_warning_to(args.clone(), &mut warnings).unwrap();
+    let warnings = String::from_utf8(warnings).unwrap();
+    let line = PARSED_SCENE
+        .lines()
+        .position(|l| l.contains("angle"))
+        .unwrap()
+        + 1;
+    assert!(
+        warnings.starts_with(&format!(
+            "raycast: {}:{line}:11: warning: angle 0.7 is under 2 degrees",
+            scene_path.display()
+        )),
+        "{warnings}"
+    );
+    assert_eq!(warnings.lines().count(), 1);
 
     std::fs::write(&scene_path, "PerspectiveCamera { center 0 0 x }").unwrap();
     let err = crate::cli::run([scene_path.display().to_string(), "--quiet".into()]).unwrap_err();

@@ -1,11 +1,17 @@
 //! `PerspectiveCamera { center P  direction V  up V  angle DEG  width N  height N }`
-//! (keys in any order, each required once).
+//! (keys in any order, each required once). `angle` is the vertical field of
+//! view in degrees, in `(0, 180)`; under 2 degrees it draws a warning.
 
 use super::cursor::{Cursor, Result};
 use crate::scene::Camera;
 
 const BLOCK: &str = "PerspectiveCamera";
 const KEYS: &[&str] = &["center", "direction", "up", "angle", "width", "height"];
+
+/// A field of view under this many degrees draws a warning: it is most
+/// likely written in radians (a field of view in radians is under π, and
+/// hardly anyone means a view narrower than 2°).
+const MIN_PLAUSIBLE_ANGLE: f64 = 2.0;
 
 /// Reads a camera block (after its keyword).
 pub(super) fn camera(c: &mut Cursor<'_>) -> Result<Camera> {
@@ -22,10 +28,21 @@ pub(super) fn camera(c: &mut Cursor<'_>) -> Result<Camera> {
                 c.field(&mut up, key, BLOCK, Cursor::direction)?;
             }
             "angle" => {
-                let pos = c.here();
+                let (pos, text) = (c.here(), c.peek().map_or("", |t| t.text));
                 c.field(&mut angle, key, BLOCK, Cursor::number)?;
-                if angle.is_some_and(|a| !(a > 0.0 && a < 180.0)) {
-                    return Err(c.error(pos, "'angle' must be between 0 and 180 degrees"));
+                match angle {
+                    Some(a) if !(a > 0.0 && a < 180.0) => {
+                        return Err(c.error(pos, "'angle' must be between 0 and 180 degrees"));
+                    }
+                    Some(a) if a < MIN_PLAUSIBLE_ANGLE => c.warn(
+                        pos,
+                        format!(
+                            "angle {text} is under {MIN_PLAUSIBLE_ANGLE} degrees; the angle is in \
+                             degrees ({text} rad = {:.1}°)",
+                            a.to_degrees()
+                        ),
+                    ),
+                    _ => {}
                 }
             }
             "width" => c.field(&mut width, key, BLOCK, |c, w| Ok(c.whole(w, 1)?.0))?,

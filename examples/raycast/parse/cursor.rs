@@ -10,10 +10,10 @@ use std::path::Path;
 
 use revolve::nalgebra::{Point3, Vector3};
 
-use super::ParseError;
 use super::lexer::{Kind, Pos, Token, tokenize};
 use super::objects::OBJECTS;
 use super::suggest::did_you_mean;
+use super::{ParseError, ParseWarning};
 
 /// Results of the parser.
 pub(super) type Result<T> = std::result::Result<T, ParseError>;
@@ -39,6 +39,8 @@ pub(super) struct Cursor<'a> {
     next: usize,
     end: Pos,
     file: &'a Path,
+    /// The warnings raised so far, in file order.
+    warnings: Vec<ParseWarning>,
 }
 
 impl<'a> Cursor<'a> {
@@ -50,7 +52,23 @@ impl<'a> Cursor<'a> {
             next: 0,
             end,
             file,
+            warnings: Vec::new(),
         }
+    }
+
+    /// Records a warning at `pos` in this file.
+    pub(super) fn warn(&mut self, pos: Pos, message: impl Into<String>) {
+        self.warnings.push(ParseWarning {
+            file: self.file.to_path_buf(),
+            line: pos.line,
+            column: pos.column,
+            message: message.into(),
+        });
+    }
+
+    /// The warnings raised so far, in file order, leaving none.
+    pub(super) fn take_warnings(&mut self) -> Vec<ParseWarning> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// An error at `pos` in this file.

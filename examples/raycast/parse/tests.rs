@@ -25,6 +25,8 @@ mod robustness;
 mod settings;
 #[path = "tests/transforms.rs"]
 mod transforms;
+#[path = "tests/warnings.rs"]
+mod warnings;
 
 /// A camera block on one line (line 1 of every test scene).
 const CAMERA: &str =
