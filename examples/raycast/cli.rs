@@ -141,14 +141,8 @@ pub fn run_warning_to<I: IntoIterator<Item = String>>(
         let _ = writeln!(warnings, "raycast: {w}");
     }
     let scene = parsed.scene;
-    if scene.camera.width == 0 || scene.camera.height == 0 {
-        return Err(format!(
-            "{}: the image is empty ({}×{} pixels)",
-            args.scene.display(),
-            scene.camera.width,
-            scene.camera.height
-        ));
-    }
+    render::check_size(scene.camera.width, scene.camera.height)
+        .map_err(|e| format!("{}: {e}", args.scene.display()))?;
     image_out::check_writable(&args.out)?;
 
     let effects = Effects::of(&scene, args.samples);
@@ -160,7 +154,8 @@ pub fn run_warning_to<I: IntoIterator<Item = String>>(
     if let Some(seed) = args.seed {
         options.seed = seed;
     }
-    let (image, stats) = render::render(&scene, &options);
+    let (image, stats) =
+        render::render(&scene, &options).map_err(|e| format!("{}: {e}", args.scene.display()))?;
     image_out::write_png(&image, effects.tone_map, &args.out)?;
     if !args.quiet {
         print!(

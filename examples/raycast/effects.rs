@@ -26,6 +26,10 @@ use crate::scene::{Color, Integrator, Light, Scene, ToneMap};
 pub const DEFAULT_WHITTED_DEPTH: u32 = 5;
 /// Path length (bounces) when the Render block gives none.
 pub const DEFAULT_PATH_DEPTH: u32 = 8;
+/// The largest `maxDepth`: the parser rejects more, and a scene built in
+/// code is clamped to it. The Whitted tracer recurses once per bounce, so
+/// this bounds its stack (about a kilobyte a level).
+pub const MAX_DEPTH: u32 = 100;
 /// Light samples per shading point and pixel: an area light gets
 /// `max(1, LIGHT_SAMPLE_BUDGET / samples)` samples per shading point, so a
 /// pixel gathers about this many whatever its own sample count.
@@ -104,10 +108,13 @@ impl Effects {
             None => Integrator::Whitted,
         };
         let samples = samples.or(settings.samples).unwrap_or(1).max(1);
-        let max_depth = settings.max_depth.unwrap_or(match integrator {
-            Integrator::Whitted => DEFAULT_WHITTED_DEPTH,
-            Integrator::Path => DEFAULT_PATH_DEPTH,
-        });
+        let max_depth = settings
+            .max_depth
+            .unwrap_or(match integrator {
+                Integrator::Whitted => DEFAULT_WHITTED_DEPTH,
+                Integrator::Path => DEFAULT_PATH_DEPTH,
+            })
+            .min(MAX_DEPTH);
         let delta_lights = scene
             .lights
             .iter()

@@ -35,6 +35,9 @@ mod golden_tests;
 #[cfg(test)]
 mod shadow_tests;
 
+#[cfg(test)]
+mod limits_tests;
+
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

@@ -59,6 +59,9 @@ use std::path::{Path, PathBuf};
 
 use crate::scene::Scene;
 
+#[cfg(test)]
+pub use objects::MAX_NESTING;
+
 #[path = "parse/camera.rs"]
 mod camera;
 #[path = "parse/counted.rs"]

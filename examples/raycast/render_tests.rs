@@ -99,7 +99,7 @@ fn quiet() -> Options {
 }
 
 pub(crate) fn run(scene: &Scene) -> (Image, Stats) {
-    render(scene, &quiet())
+    render(scene, &quiet()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The pixel in which the world point `p` appears.
@@ -422,7 +422,7 @@ fn one_sample_means_one_primary_ray_per_pixel_and_no_jitter() {
         ..quiet()
     };
     assert!(Effects::of(&s, Some(4)).antialiasing);
-    let (smooth, stats) = render(&s, &options);
+    let (smooth, stats) = render(&s, &options).unwrap();
     assert_eq!(stats.rays.primary, 4 * 33 * 33);
     let mixed = smooth
         .pixels
@@ -431,7 +431,7 @@ fn one_sample_means_one_primary_ray_per_pixel_and_no_jitter() {
         .count();
     assert!(mixed > 10, "{mixed} mixed pixels");
     // The same render twice is the same image.
-    assert_eq!(render(&s, &options).0, smooth);
+    assert_eq!(render(&s, &options).unwrap().0, smooth);
 }
 
 /// A path-traced pixel's value: one 1×1 camera looking from `eye` at

@@ -17,6 +17,8 @@ mod errors_values;
 mod format_example;
 #[path = "tests/lexing.rs"]
 mod lexing;
+#[path = "tests/limits.rs"]
+mod limits;
 #[path = "tests/objects.rs"]
 mod objects;
 #[path = "tests/robustness.rs"]
