@@ -38,6 +38,9 @@ mod shadow_tests;
 #[cfg(test)]
 mod limits_tests;
 
+#[cfg(test)]
+mod fuzz_tests;
+
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

@@ -7,7 +7,10 @@
 //! the line; `{ } [ ]` are tokens of their own; numbers are decimal
 //! (`2`, `+3`, `.5`, `-1e-3`). Keys inside a block may come in any order,
 //! each at most once. `P`, `V` and `C` are three numbers (a point, a non-zero
-//! vector, a colour with non-negative components).
+//! vector, a colour with non-negative components: at most 1 for the
+//! reflectances `diffuseColor`, `specularColor`, `reflectivity` and
+//! `transparency`, at most `1e100` for the radiances of lights, emission
+//! and background).
 //!
 //! ```text
 //! file        = top-level block…   (each at most once, in any order; the camera is required)

@@ -234,6 +234,8 @@ fn pixel(
         };
         if c.iter().all(|v| v.is_finite()) {
             sum += c;
+        } else {
+            stats.non_finite_samples += 1;
         }
     }
     sum / f64::from(n)

@@ -4,6 +4,7 @@
 //! Every block of the format has the same shape, `Name { key value… key value… }`;
 //! [`Cursor::open`], [`Cursor::key`] and [`Cursor::field`] read it, and the
 //! value readers ([`Cursor::number`], [`Cursor::vector`], [`Cursor::color`],
+//! [`Cursor::reflectance`],
 //! [`Cursor::whole`], …) say which key they were reading when they fail.
 
 use std::path::Path;
@@ -17,6 +18,12 @@ use super::{ParseError, ParseWarning};
 
 /// Results of the parser.
 pub(super) type Result<T> = std::result::Result<T, ParseError>;
+
+/// The largest colour component of a light, an emission or the background.
+/// With reflectances at most 1, every radiance the renderer computes stays
+/// finite: it sums at most a few thousand terms, each this bound times
+/// factors whose product stays under 2¹⁰⁰ (an upper bound on the whole ray tree).
+pub(super) const MAX_RADIANCE: f64 = 1e100;
 
 /// The block keywords of the format other than the objects
 /// ([`OBJECTS`]), to explain a misplaced one.
@@ -32,6 +39,17 @@ const BLOCK_KEYWORDS: &[&str] = &[
     "Material",
     "Render",
 ];
+
+/// `x` for a message: plain decimals, or the exponent form for magnitudes
+/// that would print as a long run of zeros (below 1e-4 or from 1e16 on).
+pub(super) fn shown(x: f64) -> String {
+    let a = x.abs();
+    if a != 0.0 && !(1e-4..1e16).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
 
 /// The tokens of one scene file and the position of the next one.
 pub(super) struct Cursor<'a> {
@@ -239,7 +257,10 @@ impl<'a> Cursor<'a> {
         if x > 0.0 {
             Ok(x)
         } else {
-            Err(self.error(pos, format!("'{what}' must be positive, found {x}")))
+            Err(self.error(
+                pos,
+                format!("'{what}' must be positive, found {}", shown(x)),
+            ))
         }
     }
 
@@ -249,7 +270,10 @@ impl<'a> Cursor<'a> {
         if x >= 0.0 {
             Ok(x)
         } else {
-            Err(self.error(pos, format!("'{what}' must not be negative, found {x}")))
+            Err(self.error(
+                pos,
+                format!("'{what}' must not be negative, found {}", shown(x)),
+            ))
         }
     }
 
@@ -277,8 +301,47 @@ impl<'a> Cursor<'a> {
         Ok(Point3::from(self.vector(what)?))
     }
 
-    /// Three numbers `≥ 0`: a colour.
+    /// A number in `[0, max]`; `kind` names what `max` bounds in the error.
+    fn bounded(&mut self, what: &str, max: f64, kind: &str) -> Result<f64> {
+        let at = self.here();
+        let x = self.non_negative(what)?;
+        if x > max {
+            return Err(self.error(
+                at,
+                format!(
+                    "'{what}' is {kind}, at most {}, found {}",
+                    shown(max),
+                    shown(x)
+                ),
+            ));
+        }
+        Ok(x)
+    }
+
+    /// Three numbers in `[0, MAX_RADIANCE]`: the colour of a light, an
+    /// emission or the background.
     pub(super) fn color(&mut self, what: &str) -> Result<Vector3<f64>> {
+        let kind = "a radiance";
+        Ok(Vector3::new(
+            self.bounded(what, MAX_RADIANCE, kind)?,
+            self.bounded(what, MAX_RADIANCE, kind)?,
+            self.bounded(what, MAX_RADIANCE, kind)?,
+        ))
+    }
+
+    /// Three numbers in `[0, 1]`: the fraction of light a surface reflects
+    /// or lets through.
+    pub(super) fn reflectance(&mut self, what: &str) -> Result<Vector3<f64>> {
+        let kind = "a fraction of the light";
+        Ok(Vector3::new(
+            self.bounded(what, 1.0, kind)?,
+            self.bounded(what, 1.0, kind)?,
+            self.bounded(what, 1.0, kind)?,
+        ))
+    }
+
+    /// Three numbers `≥ 0` (absorption coefficients per unit length).
+    pub(super) fn rates(&mut self, what: &str) -> Result<Vector3<f64>> {
         Ok(Vector3::new(
             self.non_negative(what)?,
             self.non_negative(what)?,
