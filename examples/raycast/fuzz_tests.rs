@@ -1,8 +1,9 @@
 //! A seeded, deterministic fuzz of the scene files: every bundled scene in
 //! `scenes/` is mutated [`CASES`] times in all (byte flips, token deletions,
 //! duplications and swaps, numbers replaced by extremes, huge counts and
-//! image sizes, deep nesting, keywords spliced in, truncation, and several of
-//! these at once). Each mutant is parsed; when it parses it is rendered at
+//! image sizes, deep nesting, control points repeated up to a thousand
+//! times, blocks and keywords spliced in, truncation, and several of these
+//! at once). Each mutant is parsed; when it parses it is rendered at
 //! most [`MAX_SIDE`]×[`MAX_SIDE`] pixels with one sample per pixel. Every case
 //! must
 //!
@@ -248,6 +249,10 @@ const NESTED_OBJECTS: &[&str] = &[
     "RevSurface { profile BezierCurve { controls [ 0.5 -1 0 ] [ 1 0 0 ] [ 0.5 1 0 ] } }",
 ];
 
+/// How many copies of a control point the many-control-points mutation
+/// inserts (a Bézier's degree grows with them).
+const COPIES: &[usize] = &[10, 60, 300, 1000];
+
 /// Nesting depths around the parser's limit and far beyond it.
 const DEPTHS: &[usize] = &[50, 199, 200, 201, 1000, 17_000];
 
@@ -304,13 +309,14 @@ enum Mutation {
     ExtremeNumber,
     HugeCount,
     DeepNesting,
+    ManyControlPoints,
     Splice,
     Truncate,
 }
 
 /// The mutations with their weights: the ones that keep a scene readable
 /// (so that it reaches the renderer) come more often.
-const MUTATIONS: [(Mutation, usize); 9] = [
+const MUTATIONS: [(Mutation, usize); 10] = [
     (Mutation::FlipBytes, 1),
     (Mutation::DeleteToken, 1),
     (Mutation::DuplicateToken, 1),
@@ -318,6 +324,7 @@ const MUTATIONS: [(Mutation, usize); 9] = [
     (Mutation::ExtremeNumber, 6),
     (Mutation::HugeCount, 1),
     (Mutation::DeepNesting, 1),
+    (Mutation::ManyControlPoints, 1),
     (Mutation::Splice, 3),
     (Mutation::Truncate, 1),
 ];
@@ -441,6 +448,20 @@ impl Mutation {
                     "{object} nested {depth} deep in {}s",
                     if transform { "Transform" } else { "Group" }
                 )
+            }
+            Mutation::ManyControlPoints => {
+                let points: Vec<usize> = (0..n.saturating_sub(4))
+                    .filter(|&i| tokens[i] == "[" && tokens[i + 4] == "]")
+                    .collect();
+                if points.is_empty() {
+                    return (tokens.join(" "), "no control point to copy".into());
+                }
+                let i = points[below(rng, points.len())];
+                let copies = COPIES[below(rng, COPIES.len())];
+                let point = tokens[i..i + 5].join(" ");
+                let inserted = vec![point.clone(); copies];
+                tokens.splice(i..i, inserted);
+                format!("control point '{point}' at token {i} repeated {copies} more times")
             }
             Mutation::Splice => {
                 let (piece, home) = SPLICES[below(rng, SPLICES.len())];
