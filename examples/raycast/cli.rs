@@ -10,8 +10,14 @@
 //! output's folder is created. Any error (bad arguments, a scene that does
 //! not parse, an output that cannot be written) prints one line to stderr
 //! and exits with status 1.
+//!
+//! The scene's warnings ([`crate::parse::ParseWarning`], e.g. a field of
+//! view under 2 degrees) print to stderr before the render, one line each,
+//! `raycast: FILE:LINE:COLUMN: warning: …`, also under `--quiet`: it
+//! silences the progress bar and the report, not what points at a likely
+//! mistake in the scene (as a compiler's warnings).
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use crate::effects::Effects;
@@ -28,7 +34,7 @@ Renders SCENE (default: the bundled scenes/showcase.txt) to a PNG.
   -o, --output OUT.png  where to write (default: out/<scene name>.png)
   --samples N           samples per pixel, overriding the scene's Render block
   --seed S              seed of the per-pixel random numbers (default 24301)
-  -q, --quiet           no progress bar and no report
+  -q, --quiet           no progress bar and no report (warnings still print)
   -h, --help            this text";
 
 /// Parsed arguments.
@@ -113,22 +119,30 @@ pub fn parse_args<I: IntoIterator<Item = String>>(args: I) -> Result<Args, Strin
     })
 }
 
-/// Runs the command line; the error is the one line to print.
+/// Runs the command line, warnings to stderr; the error is the one line to
+/// print.
 pub fn run<I: IntoIterator<Item = String>>(args: I) -> Result<(), String> {
+    run_warning_to(args, &mut std::io::stderr())
+}
+
+/// Runs the command line, writing the scene's warnings to `warnings`.
+pub fn run_warning_to<I: IntoIterator<Item = String>>(
+    args: I,
+    warnings: &mut dyn Write,
+) -> Result<(), String> {
     let args = parse_args(args)?;
     if args.help {
         println!("{USAGE}");
         return Ok(());
     }
-    let scene = parse::parse_file(&args.scene).map_err(|e| e.to_string())?;
-    if scene.camera.width == 0 || scene.camera.height == 0 {
-        return Err(format!(
-            "{}: the image is empty ({}×{} pixels)",
-            args.scene.display(),
-            scene.camera.width,
-            scene.camera.height
-        ));
+    let parsed = parse::parse_file_with_warnings(&args.scene).map_err(|e| e.to_string())?;
+    for w in &parsed.warnings {
+        // A warning that cannot be written is no reason to stop the render.
+        let _ = writeln!(warnings, "raycast: {w}");
     }
+    let scene = parsed.scene;
+    render::check_size(scene.camera.width, scene.camera.height)
+        .map_err(|e| format!("{}: {e}", args.scene.display()))?;
     image_out::check_writable(&args.out)?;
 
     let effects = Effects::of(&scene, args.samples);
@@ -140,7 +154,8 @@ pub fn run<I: IntoIterator<Item = String>>(args: I) -> Result<(), String> {
     if let Some(seed) = args.seed {
         options.seed = seed;
     }
-    let (image, stats) = render::render(&scene, &options);
+    let (image, stats) =
+        render::render(&scene, &options).map_err(|e| format!("{}: {e}", args.scene.display()))?;
     image_out::write_png(&image, effects.tone_map, &args.out)?;
     if !args.quiet {
         print!(

@@ -12,6 +12,7 @@
 //! | reflection | a material with non-zero `reflectivity` |
 //! | refraction (Fresnel, total internal reflection) | a material with non-zero `transparency` |
 //! | absorption (Beer–Lambert) | such a transparent material with non-zero `absorption` |
+//! | shadows through transparent objects | a material with non-zero `transparency` (and shadow rays) |
 //! | textures | a material with a `texture` |
 //! | path tracing | `integrator path`, or emissive objects and no explicit `integrator whitted` |
 //! | Reinhard tone mapping | path tracing and `toneMap reinhard` |
@@ -25,6 +26,10 @@ use crate::scene::{Color, Integrator, Light, Scene, ToneMap};
 pub const DEFAULT_WHITTED_DEPTH: u32 = 5;
 /// Path length (bounces) when the Render block gives none.
 pub const DEFAULT_PATH_DEPTH: u32 = 8;
+/// The largest `maxDepth`: the parser rejects more, and a scene built in
+/// code is clamped to it. The Whitted tracer recurses once per bounce, so
+/// this bounds its stack (about a kilobyte a level).
+pub const MAX_DEPTH: u32 = 100;
 /// Light samples per shading point and pixel: an area light gets
 /// `max(1, LIGHT_SAMPLE_BUDGET / samples)` samples per shading point, so a
 /// pixel gathers about this many whatever its own sample count.
@@ -56,6 +61,10 @@ pub struct Effects {
     pub reflection: bool,
     pub refraction: bool,
     pub absorption: bool,
+    /// Shadow rays continue through transparent surfaces, attenuated by
+    /// their transmission ([`crate::tracer::Tracer::transmittance`]); off,
+    /// any surface blocks the light. On with refraction.
+    pub transparent_shadows: bool,
     pub textures: bool,
     pub tone_map: ToneMap,
 }
@@ -99,10 +108,13 @@ impl Effects {
             None => Integrator::Whitted,
         };
         let samples = samples.or(settings.samples).unwrap_or(1).max(1);
-        let max_depth = settings.max_depth.unwrap_or(match integrator {
-            Integrator::Whitted => DEFAULT_WHITTED_DEPTH,
-            Integrator::Path => DEFAULT_PATH_DEPTH,
-        });
+        let max_depth = settings
+            .max_depth
+            .unwrap_or(match integrator {
+                Integrator::Whitted => DEFAULT_WHITTED_DEPTH,
+                Integrator::Path => DEFAULT_PATH_DEPTH,
+            })
+            .min(MAX_DEPTH);
         let delta_lights = scene
             .lights
             .iter()
@@ -126,9 +138,26 @@ impl Effects {
             reflection,
             refraction,
             absorption,
+            transparent_shadows: refraction,
             textures,
             tone_map,
         }
+    }
+
+    /// Whether some shadow ray may pass through a transparent surface: with
+    /// transparent shadows on, the Whitted tracer's hard and soft shadow
+    /// rays, and the path tracer's shadow rays towards point and directional
+    /// lights (towards area lights and emitters the path tracer keeps
+    /// surfaces opaque: its paths through the glass already bring that light).
+    pub fn shadows_through_transparency(&self) -> bool {
+        self.transparent_shadows
+            && match self.integrator {
+                Integrator::Whitted => {
+                    (self.delta_lights && self.hard_shadows)
+                        || ((self.area_lights || self.emissive) && self.soft_shadows)
+                }
+                Integrator::Path => self.delta_lights,
+            }
     }
 
     /// The names of the effects turned on, for the report; empty for a
@@ -177,6 +206,9 @@ impl Effects {
         }
         if self.absorption {
             names.push("absorption (Beer–Lambert)".into());
+        }
+        if self.shadows_through_transparency() {
+            names.push("shadows through transparent objects".into());
         }
         if self.textures {
             names.push("textures (bilinear)".into());

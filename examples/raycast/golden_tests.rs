@@ -54,13 +54,13 @@ fn base_scenes_match_their_golden_images() {
         let scene =
             parse_file(&scenes_dir().join(format!("{name}.txt"))).unwrap_or_else(|e| panic!("{e}"));
         let effects = Effects::of(&scene, None);
-        let (image, stats) = render(&scene, &Options::default());
+        let (image, stats) = render(&scene, &Options::default()).unwrap();
         assert_eq!(
             stats.rays.shadow + stats.rays.reflection + stats.rays.refraction + stats.rays.indirect,
             0,
             "{name} is a base-format scene: primary rays only"
         );
-        let got = to_rgb8(&image, effects.tone_map);
+        let got = to_rgb8(&image, effects.tone_map).unwrap();
         let golden_path = scenes_dir().join("golden").join(format!("{name}.png"));
         let golden = image::open(&golden_path)
             .unwrap_or_else(|e| panic!("cannot read {}: {e}", golden_path.display()))
@@ -85,8 +85,8 @@ fn the_comparison_sees_a_changed_scene() {
     let mut scene = parse_file(&scenes_dir().join("basic.txt")).unwrap_or_else(|e| panic!("{e}"));
     scene.camera.direction.x += 0.05;
     let effects = Effects::of(&scene, None);
-    let (image, _) = render(&scene, &Options::default());
-    let got = to_rgb8(&image, effects.tone_map);
+    let (image, _) = render(&scene, &Options::default()).unwrap();
+    let got = to_rgb8(&image, effects.tone_map).unwrap();
     let golden = image::open(scenes_dir().join("golden/basic.png"))
         .unwrap_or_else(|e| panic!("{e}"))
         .to_rgb8();

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use image::{ImageFormat, Rgb, RgbImage};
+use image::{ImageFormat, RgbImage};
 
 use crate::render::Image;
 use crate::scene::ToneMap;
@@ -34,16 +34,21 @@ pub fn encode(c: f64, tone_map: ToneMap) -> u8 {
     }
 }
 
-/// The image as 8-bit RGB.
-pub fn to_rgb8(image: &Image, tone_map: ToneMap) -> RgbImage {
-    RgbImage::from_fn(image.width, image.height, |x, y| {
-        let c = image.get(x, y);
-        Rgb([
+/// The image as 8-bit RGB; an error when its bytes cannot be allocated.
+pub fn to_rgb8(image: &Image, tone_map: ToneMap) -> Result<RgbImage, String> {
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(3 * image.pixels.len())
+        .map_err(|e| format!("cannot allocate the 8-bit image: {e}"))?;
+    for c in &image.pixels {
+        bytes.extend([
             encode(c.x, tone_map),
             encode(c.y, tone_map),
             encode(c.z, tone_map),
-        ])
-    })
+        ]);
+    }
+    RgbImage::from_raw(image.width, image.height, bytes)
+        .ok_or_else(|| "the image's pixels do not match its size".to_string())
 }
 
 /// Checks early that `path` can be written (creating its folder), so a
@@ -66,7 +71,7 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
 /// Writes the image to `path` as PNG (whatever the file's extension).
 pub fn write_png(image: &Image, tone_map: ToneMap, path: &Path) -> Result<(), String> {
     check_writable(path)?;
-    to_rgb8(image, tone_map)
+    to_rgb8(image, tone_map)?
         .save_with_format(path, ImageFormat::Png)
         .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
@@ -75,6 +80,7 @@ pub fn write_png(image: &Image, tone_map: ToneMap, path: &Path) -> Result<(), St
 mod tests {
     use super::*;
     use crate::scene::Color;
+    use image::Rgb;
 
     #[test]
     fn clamp_truncates_like_the_framework() {

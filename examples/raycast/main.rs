@@ -32,6 +32,15 @@ mod render_tests;
 #[cfg(test)]
 mod golden_tests;
 
+#[cfg(test)]
+mod shadow_tests;
+
+#[cfg(test)]
+mod limits_tests;
+
+#[cfg(test)]
+mod fuzz_tests;
+
 use std::process::ExitCode;
 
 fn main() -> ExitCode {

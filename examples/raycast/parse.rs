@@ -7,7 +7,10 @@
 //! the line; `{ } [ ]` are tokens of their own; numbers are decimal
 //! (`2`, `+3`, `.5`, `-1e-3`). Keys inside a block may come in any order,
 //! each at most once. `P`, `V` and `C` are three numbers (a point, a non-zero
-//! vector, a colour with non-negative components).
+//! vector, a colour with non-negative components: at most 1 for the
+//! reflectances `diffuseColor`, `specularColor`, `reflectivity` and
+//! `transparency`, at most `1e100` for the radiances of lights, emission
+//! and background).
 //!
 //! ```text
 //! file        = top-level block…   (each at most once, in any order; the camera is required)
@@ -45,11 +48,22 @@
 //! compose in the order written, `M = T₁·T₂·…`). The submodules hold the
 //! details of each part; every malformed input is a [`ParseError`] pointing
 //! at the offending token, never a panic.
+//!
+//! # Warnings
+//! Input that is valid but almost certainly a mistake parses, with a
+//! [`ParseWarning`] located the same way (`file:line:column`):
+//!
+//! - `angle` under 2 degrees: the field of view is in degrees, and such a
+//!   value is most likely radians (`angle 0.7` would render a blank picture
+//!   of a 0.7° cone); the warning gives the value in degrees.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::scene::Scene;
+
+#[cfg(test)]
+pub use objects::MAX_NESTING;
 
 #[path = "parse/camera.rs"]
 mod camera;
@@ -116,19 +130,69 @@ impl fmt::Display for ParseError {
 
 impl std::error::Error for ParseError {}
 
+/// A scene that parses but probably does not say what its author meant
+/// (e.g. a field of view in radians): where, and why. Located like a
+/// [`ParseError`] and printed as `file:line:column: warning: message`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParseWarning {
+    /// The scene file.
+    pub file: PathBuf,
+    /// 1-based line of the suspicious token.
+    pub line: usize,
+    /// 1-based column (in characters) of the suspicious token.
+    pub column: usize,
+    /// What looks wrong, and what the format expects.
+    pub message: String,
+}
+
+impl fmt::Display for ParseWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: warning: {}",
+            self.file.display(),
+            self.line,
+            self.column,
+            self.message
+        )
+    }
+}
+
+/// A parsed scene and the warnings its file raised, in file order.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    pub scene: Scene,
+    pub warnings: Vec<ParseWarning>,
+}
+
 /// Reads and parses the scene file at `path` (meshes and textures are
-/// resolved relative to its directory).
-pub fn parse_file(path: &Path) -> Result<Scene, ParseError> {
+/// resolved relative to its directory), keeping the warnings.
+pub fn parse_file_with_warnings(path: &Path) -> Result<Parsed, ParseError> {
     let text = std::fs::read_to_string(path).map_err(|e| ParseError {
         file: path.to_path_buf(),
         line: 0,
         column: 0,
         message: format!("cannot read the scene file: {e}"),
     })?;
-    parse_str(&text, path)
+    parse_str_with_warnings(&text, path)
 }
 
-/// Parses scene text; `path` names it in errors and anchors relative paths.
-pub fn parse_str(text: &str, path: &Path) -> Result<Scene, ParseError> {
+/// Parses scene text, keeping the warnings; `path` names it in errors and
+/// warnings and anchors relative paths.
+pub fn parse_str_with_warnings(text: &str, path: &Path) -> Result<Parsed, ParseError> {
     document::scene(text, path)
+}
+
+/// Reads and parses the scene file at `path`, dropping the warnings (see
+/// [`parse_file_with_warnings`]; for tests, which check warnings apart).
+#[cfg(test)]
+pub fn parse_file(path: &Path) -> Result<Scene, ParseError> {
+    parse_file_with_warnings(path).map(|p| p.scene)
+}
+
+/// Parses scene text, dropping the warnings (see
+/// [`parse_str_with_warnings`]; for tests, which check warnings apart).
+#[cfg(test)]
+pub fn parse_str(text: &str, path: &Path) -> Result<Scene, ParseError> {
+    parse_str_with_warnings(text, path).map(|p| p.scene)
 }

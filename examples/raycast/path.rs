@@ -19,10 +19,15 @@
 //!
 //! - point and directional lights: `π f · colour · cos θ`, with no fall-off
 //!   (as the course framework, so a diffuse surface is exactly as bright as
-//!   under Phong);
+//!   under Phong), times the transmission of the transparent surfaces in
+//!   between ([`Tracer::transmittance`]; no path can carry a delta light's
+//!   light through glass, so this is its only way through);
 //! - area lights and the emitters of `World::emitters`, `k` stratified
 //!   samples by area: `f · Le · cos θ · |cos θ'| · area / r²` averaged
-//!   (`θ'` at the light; both faces emit).
+//!   (`θ'` at the light; both faces emit), where any surface in between
+//!   blocks the sample, transparent or not: the light they let through
+//!   arrives along paths refracted through them, which count the emission
+//!   they meet.
 //!
 //! Emission met by a ray is counted only for camera rays and rays after a
 //! delta (mirror or glass) bounce, since next-event estimation has already
@@ -201,9 +206,13 @@ fn direct_light(
             continue;
         };
         let cos = n.dot(&l);
-        if cos > 0.0 && tracer.visible(p, n, &l, dist, stats) {
+        if cos <= 0.0 {
+            continue;
+        }
+        if let Some(kept) = tracer.transmittance(p, n, &l, dist, stats) {
             sum += light
                 .color()
+                .component_mul(&kept)
                 .component_mul(&brdf_pi(kd, material, n, v, &l))
                 * cos;
         }

@@ -12,6 +12,13 @@
 //!
 //! Each tile counts its rays in its own [`Stats`]; they are merged when the
 //! image is done, and the wall time and thread count are filled in.
+//!
+//! # Size
+//! An image is at most [`MAX_IMAGE_SIDE`] pixels on a side and
+//! [`MAX_IMAGE_PIXELS`] in all ([`check_size`]; the parser reports a larger
+//! `width`/`height` at its value). The framebuffer is allocated fallibly
+//! before any ray is traced, so a size the machine cannot hold is an error,
+//! not an abort.
 
 use std::time::Instant;
 
@@ -30,6 +37,51 @@ use crate::whitted;
 
 /// Tile side in pixels.
 pub const TILE: u32 = 16;
+
+/// Tiles rendered in parallel before their pixels are copied into the
+/// framebuffer (a batch holds at most 256 × 256 pixels besides it).
+const TILE_BATCH: usize = 256;
+
+/// The longest image side, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// The most pixels in an image: 2²⁵, e.g. 8192 × 4096 (8K UHD, 7680 × 4320,
+/// fits); its framebuffer takes 768 MiB.
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 25;
+
+/// Whether a `width × height` image is within [`MAX_IMAGE_SIDE`] and
+/// [`MAX_IMAGE_PIXELS`] and not empty; the error says which bound it breaks.
+pub fn check_size(width: u32, height: u32) -> Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err(format!("the image is empty ({width}×{height} pixels)"));
+    }
+    if width.max(height) > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "the image is {width}×{height} pixels; a side may be at most {MAX_IMAGE_SIDE}"
+        ));
+    }
+    let pixels = u64::from(width) * u64::from(height);
+    if pixels > MAX_IMAGE_PIXELS {
+        return Err(format!(
+            "the image is {width}×{height} = {pixels} pixels, more than the largest, \
+             {MAX_IMAGE_PIXELS} (e.g. 8192×4096)"
+        ));
+    }
+    Ok(())
+}
+
+/// A vector of `len` copies of `value`, or an error naming `what` when the
+/// memory cannot be had.
+pub fn try_filled<T: Clone>(len: usize, value: T, what: &str) -> Result<Vec<T>, String> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|e| {
+        format!(
+            "cannot allocate {what} ({len} × {} bytes): {e}",
+            std::mem::size_of::<T>()
+        )
+    })?;
+    v.resize(len, value);
+    Ok(v)
+}
 
 /// How to render, beyond what the scene says.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,31 +114,45 @@ pub struct Image {
 }
 
 impl Image {
-    /// The pixel in column `x` and row `y`.
+    /// The pixel in column `x` and row `y` (for tests).
+    #[cfg(test)]
     pub fn get(&self, x: u32, y: u32) -> Color {
         self.pixels[y as usize * self.width as usize + x as usize]
     }
 }
 
 /// Renders `scene` with the effects it calls for; builds the world first.
-pub fn render(scene: &Scene, options: &Options) -> (Image, Stats) {
+/// An error when the image is too large ([`check_size`]) or its memory
+/// cannot be had.
+pub fn render(scene: &Scene, options: &Options) -> Result<(Image, Stats), String> {
     let effects = Effects::of(scene, options.samples);
     let started = Instant::now();
     let world = World::new(scene);
     let build = started.elapsed();
-    let (image, mut stats) = render_world(scene, &world, effects, options);
+    let (image, mut stats) = render_world(scene, &world, effects, options)?;
     stats.build = build;
-    (image, stats)
+    Ok((image, stats))
 }
 
-/// Renders `scene`, whose `world` is built, with `effects`.
+/// Renders `scene`, whose `world` is built, with `effects` (errors as
+/// [`render`]).
 pub fn render_world(
     scene: &Scene,
     world: &World,
     effects: Effects,
     options: &Options,
-) -> (Image, Stats) {
+) -> Result<(Image, Stats), String> {
     let (width, height) = (scene.camera.width, scene.camera.height);
+    check_size(width, height)?;
+    let mut image = Image {
+        width,
+        height,
+        pixels: try_filled(
+            width as usize * height as usize,
+            Color::zeros(),
+            "the framebuffer",
+        )?,
+    };
     let tracer = Tracer::new(scene, world, effects);
     let camera = PinholeCamera::new(&scene.camera);
     let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
@@ -105,42 +171,41 @@ pub fn render_world(
     };
 
     let started = Instant::now();
-    let done: Vec<(Vec<Color>, Stats)> = tiles
-        .par_iter()
-        .map(|&(x0, y0)| {
-            let (x1, y1) = ((x0 + TILE).min(width), (y0 + TILE).min(height));
-            let mut stats = Stats::default();
-            let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let mut rng = Rng::for_pixel(options.seed, x, y);
-                    pixels.push(pixel(&tracer, &camera, x, y, &mut rng, &mut stats));
+    let mut stats = Stats::default();
+    // Tiles render in parallel a batch at a time and are copied into the
+    // framebuffer, so the tiles' own pixels never hold more than a batch.
+    for batch in tiles.chunks(TILE_BATCH) {
+        let done: Vec<(Vec<Color>, Stats)> = batch
+            .par_iter()
+            .map(|&(x0, y0)| {
+                let (x1, y1) = ((x0 + TILE).min(width), (y0 + TILE).min(height));
+                let mut stats = Stats::default();
+                let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        let mut rng = Rng::for_pixel(options.seed, x, y);
+                        pixels.push(pixel(&tracer, &camera, x, y, &mut rng, &mut stats));
+                    }
                 }
+                bar.inc(1);
+                (pixels, stats)
+            })
+            .collect();
+        for (&(x0, y0), (pixels, tile_stats)) in batch.iter().zip(&done) {
+            let w = (x0 + TILE).min(width) - x0;
+            for (i, c) in pixels.iter().enumerate() {
+                let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
+                image.pixels[y as usize * width as usize + x as usize] = *c;
             }
-            bar.inc(1);
-            (pixels, stats)
-        })
-        .collect();
+            stats.merge(tile_stats);
+        }
+    }
     let wall = started.elapsed();
     bar.finish_and_clear();
 
-    let mut image = Image {
-        width,
-        height,
-        pixels: vec![Color::zeros(); width as usize * height as usize],
-    };
-    let mut stats = Stats::default();
-    for (&(x0, y0), (pixels, tile_stats)) in tiles.iter().zip(&done) {
-        let w = (x0 + TILE).min(width) - x0;
-        for (i, c) in pixels.iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
-            image.pixels[y as usize * width as usize + x as usize] = *c;
-        }
-        stats.merge(tile_stats);
-    }
     stats.wall = wall;
     stats.threads = rayon::current_num_threads().min(tiles.len()).max(1);
-    (image, stats)
+    Ok((image, stats))
 }
 
 /// The colour of pixel `(x, y)`: the mean over its samples.
@@ -164,11 +229,13 @@ fn pixel(
         let ray = camera.ray(sx, sy);
         stats.rays.primary += 1;
         let c = match tracer.effects.integrator {
-            Integrator::Whitted => whitted::trace(tracer, &ray, 0.0, 0, 1.0, rng, stats),
+            Integrator::Whitted => whitted::trace(tracer, &ray, rng, stats),
             Integrator::Path => path::radiance(tracer, &ray, rng, stats),
         };
         if c.iter().all(|v| v.is_finite()) {
             sum += c;
+        } else {
+            stats.non_finite_samples += 1;
         }
     }
     sum / f64::from(n)

@@ -15,9 +15,15 @@ use crate::scene::{
 };
 use crate::stats::Stats;
 
-const BACKGROUND: Color = Color::new(0.1, 0.2, 0.3);
+pub(crate) const BACKGROUND: Color = Color::new(0.1, 0.2, 0.3);
 
-fn look_at(eye: [f64; 3], target: [f64; 3], up: [f64; 3], size: u32, angle: f64) -> Camera {
+pub(crate) fn look_at(
+    eye: [f64; 3],
+    target: [f64; 3],
+    up: [f64; 3],
+    size: u32,
+    angle: f64,
+) -> Camera {
     let center = Point3::from(eye);
     Camera {
         center,
@@ -29,7 +35,7 @@ fn look_at(eye: [f64; 3], target: [f64; 3], up: [f64; 3], size: u32, angle: f64)
     }
 }
 
-fn scene(
+pub(crate) fn scene(
     camera: Camera,
     lights: Vec<Light>,
     materials: Vec<Material>,
@@ -45,7 +51,7 @@ fn scene(
     }
 }
 
-fn object(shape: Shape, material: usize) -> Object {
+pub(crate) fn object(shape: Shape, material: usize) -> Object {
     Object {
         shape,
         material,
@@ -53,7 +59,7 @@ fn object(shape: Shape, material: usize) -> Object {
     }
 }
 
-fn sphere(center: [f64; 3], radius: f64, material: usize) -> Object {
+pub(crate) fn sphere(center: [f64; 3], radius: f64, material: usize) -> Object {
     object(
         Shape::Sphere {
             center: Point3::from(center),
@@ -64,7 +70,7 @@ fn sphere(center: [f64; 3], radius: f64, material: usize) -> Object {
 }
 
 /// The plane `y = height` facing up.
-fn floor(height: f64, material: usize) -> Object {
+pub(crate) fn floor(height: f64, material: usize) -> Object {
     object(
         Shape::Plane {
             normal: Vector3::y(),
@@ -74,14 +80,14 @@ fn floor(height: f64, material: usize) -> Object {
     )
 }
 
-fn diffuse(r: f64, g: f64, b: f64) -> Material {
+pub(crate) fn diffuse(r: f64, g: f64, b: f64) -> Material {
     Material {
         diffuse: Color::new(r, g, b),
         ..Material::default()
     }
 }
 
-fn directional(direction: [f64; 3], color: [f64; 3]) -> Light {
+pub(crate) fn directional(direction: [f64; 3], color: [f64; 3]) -> Light {
     Light::Directional {
         direction: Vector3::from(direction),
         color: Color::from(color),
@@ -92,12 +98,12 @@ fn quiet() -> Options {
     Options::default()
 }
 
-fn run(scene: &Scene) -> (Image, Stats) {
-    render(scene, &quiet())
+pub(crate) fn run(scene: &Scene) -> (Image, Stats) {
+    render(scene, &quiet()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The pixel in which the world point `p` appears.
-fn pixel_of(scene: &Scene, p: [f64; 3]) -> (u32, u32) {
+pub(crate) fn pixel_of(scene: &Scene, p: [f64; 3]) -> (u32, u32) {
     let (x, y) = PinholeCamera::new(&scene.camera)
         .project(&Point3::from(p))
         .expect("in front of the camera");
@@ -110,7 +116,7 @@ fn pixel_of(scene: &Scene, p: [f64; 3]) -> (u32, u32) {
     (x as u32, y as u32)
 }
 
-fn close(a: &Color, b: &Color, tolerance: f64) -> bool {
+pub(crate) fn close(a: &Color, b: &Color, tolerance: f64) -> bool {
     (a - b).amax() <= tolerance
 }
 
@@ -416,7 +422,7 @@ fn one_sample_means_one_primary_ray_per_pixel_and_no_jitter() {
         ..quiet()
     };
     assert!(Effects::of(&s, Some(4)).antialiasing);
-    let (smooth, stats) = render(&s, &options);
+    let (smooth, stats) = render(&s, &options).unwrap();
     assert_eq!(stats.rays.primary, 4 * 33 * 33);
     let mixed = smooth
         .pixels
@@ -425,7 +431,7 @@ fn one_sample_means_one_primary_ray_per_pixel_and_no_jitter() {
         .count();
     assert!(mixed > 10, "{mixed} mixed pixels");
     // The same render twice is the same image.
-    assert_eq!(render(&s, &options).0, smooth);
+    assert_eq!(render(&s, &options).unwrap().0, smooth);
 }
 
 /// A path-traced pixel's value: one 1×1 camera looking from `eye` at
@@ -723,11 +729,31 @@ fn the_command_line_writes_the_png_and_fails_cleanly() {
         out.display().to_string(),
         "--quiet".into(),
     ];
-    crate::cli::run(args).unwrap();
+    crate::cli::run(args.clone()).unwrap();
     let png = image::open(&out).unwrap().to_rgb8();
     assert_eq!(png.dimensions(), (33, 33));
     // Background 0.1 0.2 0.3 written linearly: int(c·255).
     assert_eq!(png.get_pixel(0, 0).0, [25, 51, 76]);
+
+    // A warning prints (to the given stream) even under --quiet, and the
+    // render goes on.
+    std::fs::write(&scene_path, PARSED_SCENE.replace("angle 40", "angle 0.7")).unwrap();
+    let mut warnings = Vec::new();
+    crate::cli::run_warning_to(args.clone(), &mut warnings).unwrap();
+    let warnings = String::from_utf8(warnings).unwrap();
+    let line = PARSED_SCENE
+        .lines()
+        .position(|l| l.contains("angle"))
+        .unwrap()
+        + 1;
+    assert!(
+        warnings.starts_with(&format!(
+            "raycast: {}:{line}:11: warning: angle 0.7 is under 2 degrees",
+            scene_path.display()
+        )),
+        "{warnings}"
+    );
+    assert_eq!(warnings.lines().count(), 1);
 
     std::fs::write(&scene_path, "PerspectiveCamera { center 0 0 x }").unwrap();
     let err = crate::cli::run([scene_path.display().to_string(), "--quiet".into()]).unwrap_err();

@@ -77,6 +77,13 @@ pub fn summary(
         thousands(r.refraction),
         thousands(r.indirect)
     );
+    if stats.non_finite_samples > 0 {
+        let _ = writeln!(
+            s,
+            "warning     {} camera samples were not finite and count as black",
+            thousands(stats.non_finite_samples)
+        );
+    }
     let secs = stats.wall.as_secs_f64();
     let _ = writeln!(
         s,

@@ -12,7 +12,8 @@ use crate::geometry::IntersectStats;
 /// Rays traced, by kind.
 ///
 /// - `primary`: camera rays, one per pixel sample;
-/// - `shadow`: visibility tests towards a light sample;
+/// - `shadow`: visibility tests towards a light sample, plus one for each
+///   transparent surface a shadow ray is continued past;
 /// - `reflection`: mirror rays (including the Fresnel-reflected part of a
 ///   dielectric);
 /// - `refraction`: rays transmitted through a dielectric surface;
@@ -54,6 +55,9 @@ pub struct Stats {
     pub threads: usize,
     /// Time to build the world (bounding volume hierarchy) before tracing.
     pub build: Duration,
+    /// Camera samples whose value was not finite (NaN or infinite in some
+    /// channel), counted as black instead of poisoning their pixel.
+    pub non_finite_samples: u64,
 }
 
 impl Stats {
@@ -63,6 +67,7 @@ impl Stats {
         self.rays.add(&other.rays);
         self.intersect.revolution_calls += other.intersect.revolution_calls;
         self.intersect.revolution_nanos += other.intersect.revolution_nanos;
+        self.non_finite_samples += other.non_finite_samples;
     }
 
     /// The share of the render's thread time spent inside revolve's exact

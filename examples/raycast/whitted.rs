@@ -6,11 +6,16 @@
 //!
 //! ```text
 //! colour = emission                                   (emissive objects only)
-//!        + Σ delta lights  Phong(L)                   × visible   (hard shadows only)
-//!        + Σ area lights   1/k Σᵢ Phong(Lᵢ)           × visibleᵢ  (k stratified samples)
+//!        + Σ delta lights  Phong(L)                   ⊙ shadow    (hard shadows only)
+//!        + Σ area lights   1/k Σᵢ Phong(Lᵢ)           ⊙ shadowᵢ   (k stratified samples)
 //!        + (reflectivity + transparency·F) ⊙ trace(reflected)        (depth < maxDepth)
 //!        + transparency·(1 − F) ⊙ trace(refracted)                    (depth < maxDepth)
 //! ```
+//!
+//! `shadow` is 0 when an opaque surface lies between the point and the
+//! light, 1 when nothing does, and with transparent materials in the scene
+//! the product of the transmissions of the transparent surfaces in between
+//! ([`Tracer::transmittance`]).
 //!
 //! An area light (or a sampled emitter) is treated as `k` point lights of
 //! its full colour at stratified points of its surface, averaged: it is as
@@ -23,9 +28,10 @@
 //! from inside an object with `absorption σ` has its colour multiplied by
 //! `exp(−σ t)`, `t` being the distance travelled inside (Beer–Lambert).
 //!
-//! The recursion stops at `maxDepth` bounces, and a branch whose weight
+//! The recursion stops at `maxDepth` bounces, a branch whose weight
 //! (the product of the reflection/transmission factors along it, largest
-//! channel) falls below [`MIN_WEIGHT`] is not traced. A miss returns the
+//! channel) falls below [`MIN_WEIGHT`] is not traced, and a camera sample
+//! traces at most [`MAX_SECONDARY_RAYS`] secondary rays. A miss returns the
 //! background colour. Each disabled effect costs one boolean test.
 
 use revolve::Ray;
@@ -46,18 +52,55 @@ fn nonzero(c: &Color) -> bool {
     c.iter().any(|v| *v != 0.0)
 }
 
+/// Reflection and refraction rays one camera sample may spawn in all; the
+/// branches past it are not traced. A full binary tree of the default depth
+/// (5) holds 62, and pruning by [`MIN_WEIGHT`] keeps real scenes far below;
+/// the budget bounds the work of materials whose reflectivity and
+/// transparency add up to more than 1, whose branches never get light
+/// enough to prune (2^maxDepth rays otherwise).
+pub const MAX_SECONDARY_RAYS: u32 = 1024;
+
+/// Where a branch of the ray tree stands: bounces so far, and its weight
+/// (the product of the reflection/transmission factors along it, largest
+/// channel).
+#[derive(Debug, Clone, Copy)]
+struct Branch {
+    depth: u32,
+    weight: f64,
+}
+
+/// The colour seen along the camera ray `ray` (unit direction).
+pub fn trace(tracer: &Tracer<'_>, ray: &Ray, rng: &mut Rng, stats: &mut Stats) -> Color {
+    let mut budget = MAX_SECONDARY_RAYS;
+    let camera = Branch {
+        depth: 0,
+        weight: 1.0,
+    };
+    trace_branch(tracer, ray, 0.0, camera, &mut budget, rng, stats)
+}
+
+/// Takes one ray from the `budget`; false when it is spent.
+fn spend(budget: &mut u32) -> bool {
+    if *budget == 0 {
+        return false;
+    }
+    *budget -= 1;
+    true
+}
+
 /// The colour seen along `ray` (unit direction), ignoring hits with
-/// `t ≤ t_min`; `depth` is the number of bounces so far and `weight` the
-/// branch's weight.
-pub fn trace(
+/// `t ≤ t_min`, on the branch `branch`, with `budget` secondary rays left
+/// for the camera sample.
+fn trace_branch(
     tracer: &Tracer<'_>,
     ray: &Ray,
     t_min: f64,
-    depth: u32,
-    weight: f64,
+    branch: Branch,
+    budget: &mut u32,
     rng: &mut Rng,
     stats: &mut Stats,
 ) -> Color {
+    let Branch { depth, weight } = branch;
     let Some(hit) = tracer.nearest(ray, t_min, stats) else {
         return tracer.scene.background;
     };
@@ -77,10 +120,14 @@ pub fn trace(
         let Some((l, dist)) = light.toward(&p) else {
             continue;
         };
-        if effects.hard_shadows && !tracer.visible(&p, &n, &l, dist, stats) {
-            continue;
+        let mut arriving = *light.color();
+        if effects.hard_shadows {
+            match tracer.transmittance(&p, &n, &l, dist, stats) {
+                Some(kept) => arriving = arriving.component_mul(&kept),
+                None => continue,
+            }
         }
-        color += shading::phong(&kd, material, &n, &v, &l, light.color());
+        color += shading::phong(&kd, material, &n, &v, &l, &arriving);
     }
     if effects.area_lights || effects.emissive {
         color += area_lights(tracer, &p, &n, &v, &kd, material, rng, stats);
@@ -98,10 +145,14 @@ pub fn trace(
                 Some(t) if f < 1.0 => {
                     let k = material.transparency * (1.0 - f);
                     let w = weight * k.max();
-                    if w >= MIN_WEIGHT {
+                    if w >= MIN_WEIGHT && spend(budget) {
                         stats.rays.refraction += 1;
                         let ray = tracer.spawn(&p, &-n, t.normalize());
-                        let c = trace(tracer, &ray, tracer.eps, depth + 1, w, rng, stats);
+                        let next = Branch {
+                            depth: depth + 1,
+                            weight: w,
+                        };
+                        let c = trace_branch(tracer, &ray, tracer.eps, next, budget, rng, stats);
                         color += k.component_mul(&c);
                     }
                     mirror += material.transparency * f;
@@ -110,10 +161,14 @@ pub fn trace(
             }
         }
         let w = weight * mirror.max();
-        if nonzero(&mirror) && w >= MIN_WEIGHT {
+        if nonzero(&mirror) && w >= MIN_WEIGHT && spend(budget) {
             stats.rays.reflection += 1;
             let ray = tracer.spawn(&p, &n, optics::reflect(&d, &n));
-            let c = trace(tracer, &ray, tracer.eps, depth + 1, w, rng, stats);
+            let next = Branch {
+                depth: depth + 1,
+                weight: w,
+            };
+            let c = trace_branch(tracer, &ray, tracer.eps, next, budget, rng, stats);
             color += mirror.component_mul(&c);
         }
     }
@@ -148,10 +203,14 @@ fn area_lights(
             return;
         }
         let l = w / dist;
-        if effects.soft_shadows && !tracer.visible(p, n, &l, dist, stats) {
-            return;
+        let mut arriving = *light;
+        if effects.soft_shadows {
+            match tracer.transmittance(p, n, &l, dist, stats) {
+                Some(kept) => arriving = arriving.component_mul(&kept),
+                None => return,
+            }
         }
-        color += shading::phong(kd, material, n, v, &l, light) * scale;
+        color += shading::phong(kd, material, n, v, &l, &arriving) * scale;
     };
     for light in &tracer.lights.area {
         for i in 0..k {

@@ -4,19 +4,26 @@
 //! Every block of the format has the same shape, `Name { key value… key value… }`;
 //! [`Cursor::open`], [`Cursor::key`] and [`Cursor::field`] read it, and the
 //! value readers ([`Cursor::number`], [`Cursor::vector`], [`Cursor::color`],
+//! [`Cursor::reflectance`],
 //! [`Cursor::whole`], …) say which key they were reading when they fail.
 
 use std::path::Path;
 
 use revolve::nalgebra::{Point3, Vector3};
 
-use super::ParseError;
 use super::lexer::{Kind, Pos, Token, tokenize};
 use super::objects::OBJECTS;
 use super::suggest::did_you_mean;
+use super::{ParseError, ParseWarning};
 
 /// Results of the parser.
 pub(super) type Result<T> = std::result::Result<T, ParseError>;
+
+/// The largest colour component of a light, an emission or the background.
+/// With reflectances at most 1, every radiance the renderer computes stays
+/// finite: it sums at most a few thousand terms, each this bound times
+/// factors whose product stays under 2¹⁰⁰ (an upper bound on the whole ray tree).
+pub(super) const MAX_RADIANCE: f64 = 1e100;
 
 /// The block keywords of the format other than the objects
 /// ([`OBJECTS`]), to explain a misplaced one.
@@ -33,12 +40,25 @@ const BLOCK_KEYWORDS: &[&str] = &[
     "Render",
 ];
 
+/// `x` for a message: plain decimals, or the exponent form for magnitudes
+/// that would print as a long run of zeros (below 1e-4 or from 1e16 on).
+pub(super) fn shown(x: f64) -> String {
+    let a = x.abs();
+    if a != 0.0 && !(1e-4..1e16).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// The tokens of one scene file and the position of the next one.
 pub(super) struct Cursor<'a> {
     tokens: Vec<Token<'a>>,
     next: usize,
     end: Pos,
     file: &'a Path,
+    /// The warnings raised so far, in file order.
+    warnings: Vec<ParseWarning>,
 }
 
 impl<'a> Cursor<'a> {
@@ -50,7 +70,23 @@ impl<'a> Cursor<'a> {
             next: 0,
             end,
             file,
+            warnings: Vec::new(),
         }
+    }
+
+    /// Records a warning at `pos` in this file.
+    pub(super) fn warn(&mut self, pos: Pos, message: impl Into<String>) {
+        self.warnings.push(ParseWarning {
+            file: self.file.to_path_buf(),
+            line: pos.line,
+            column: pos.column,
+            message: message.into(),
+        });
+    }
+
+    /// The warnings raised so far, in file order, leaving none.
+    pub(super) fn take_warnings(&mut self) -> Vec<ParseWarning> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// An error at `pos` in this file.
@@ -221,7 +257,10 @@ impl<'a> Cursor<'a> {
         if x > 0.0 {
             Ok(x)
         } else {
-            Err(self.error(pos, format!("'{what}' must be positive, found {x}")))
+            Err(self.error(
+                pos,
+                format!("'{what}' must be positive, found {}", shown(x)),
+            ))
         }
     }
 
@@ -231,7 +270,10 @@ impl<'a> Cursor<'a> {
         if x >= 0.0 {
             Ok(x)
         } else {
-            Err(self.error(pos, format!("'{what}' must not be negative, found {x}")))
+            Err(self.error(
+                pos,
+                format!("'{what}' must not be negative, found {}", shown(x)),
+            ))
         }
     }
 
@@ -259,8 +301,47 @@ impl<'a> Cursor<'a> {
         Ok(Point3::from(self.vector(what)?))
     }
 
-    /// Three numbers `≥ 0`: a colour.
+    /// A number in `[0, max]`; `kind` names what `max` bounds in the error.
+    fn bounded(&mut self, what: &str, max: f64, kind: &str) -> Result<f64> {
+        let at = self.here();
+        let x = self.non_negative(what)?;
+        if x > max {
+            return Err(self.error(
+                at,
+                format!(
+                    "'{what}' is {kind}, at most {}, found {}",
+                    shown(max),
+                    shown(x)
+                ),
+            ));
+        }
+        Ok(x)
+    }
+
+    /// Three numbers in `[0, MAX_RADIANCE]`: the colour of a light, an
+    /// emission or the background.
     pub(super) fn color(&mut self, what: &str) -> Result<Vector3<f64>> {
+        let kind = "a radiance";
+        Ok(Vector3::new(
+            self.bounded(what, MAX_RADIANCE, kind)?,
+            self.bounded(what, MAX_RADIANCE, kind)?,
+            self.bounded(what, MAX_RADIANCE, kind)?,
+        ))
+    }
+
+    /// Three numbers in `[0, 1]`: the fraction of light a surface reflects
+    /// or lets through.
+    pub(super) fn reflectance(&mut self, what: &str) -> Result<Vector3<f64>> {
+        let kind = "a fraction of the light";
+        Ok(Vector3::new(
+            self.bounded(what, 1.0, kind)?,
+            self.bounded(what, 1.0, kind)?,
+            self.bounded(what, 1.0, kind)?,
+        ))
+    }
+
+    /// Three numbers `≥ 0` (absorption coefficients per unit length).
+    pub(super) fn rates(&mut self, what: &str) -> Result<Vector3<f64>> {
         Ok(Vector3::new(
             self.non_negative(what)?,
             self.non_negative(what)?,

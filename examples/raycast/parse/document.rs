@@ -13,6 +13,7 @@
 
 use std::path::Path;
 
+use super::Parsed;
 use super::camera::camera;
 use super::cursor::{Cursor, Result};
 use super::lexer::{Kind, Pos};
@@ -37,7 +38,7 @@ const BLOCKS: &[&str] = &[
 const DEFAULT_GREY: f64 = 0.8;
 
 /// Parses the scene `text` of the file `path`.
-pub(super) fn scene(text: &str, path: &Path) -> Result<Scene> {
+pub(super) fn scene(text: &str, path: &Path) -> Result<Parsed> {
     let mut c = Cursor::new(text, path);
     let mut res = Resources::new(path);
     let mut seen: Vec<(&str, Pos)> = Vec::new();
@@ -102,13 +103,17 @@ pub(super) fn scene(text: &str, path: &Path) -> Result<Scene> {
         };
         return Err(c.error(at, message));
     }
-    Ok(Scene {
+    let scene = Scene {
         camera,
         lights: light_list,
         background: background_color,
         materials: material_list,
         objects: flat.objects,
         render: settings,
+    };
+    Ok(Parsed {
+        scene,
+        warnings: c.take_warnings(),
     })
 }
 

@@ -8,7 +8,10 @@
 //! ```
 //!
 //! Missing keys are zero (`refractionIndex` is 1). `numMaterials`, when given,
-//! must equal the number of materials.
+//! must equal the number of materials. The four reflectances (`diffuseColor`,
+//! `specularColor`, `reflectivity`, `transparency`) are fractions of the
+//! light, each component in `[0, 1]`; `emission` is a radiance, at most
+//! `1e100`; `absorption` is any finite rate `≥ 0`.
 
 use super::counted::Counter;
 use super::cursor::{Cursor, Result};
@@ -56,13 +59,13 @@ fn material(c: &mut Cursor<'_>, res: &mut Resources, name: &str) -> Result<Mater
     let (mut absorption, mut emission, mut texture) = (None, None, None);
     while let Some(key) = c.key(name, open)? {
         match key.text {
-            "diffuseColor" => c.field(&mut diffuse, key, name, Cursor::color)?,
-            "specularColor" => c.field(&mut specular, key, name, Cursor::color)?,
+            "diffuseColor" => c.field(&mut diffuse, key, name, Cursor::reflectance)?,
+            "specularColor" => c.field(&mut specular, key, name, Cursor::reflectance)?,
             "shininess" => c.field(&mut shininess, key, name, Cursor::non_negative)?,
-            "reflectivity" => c.field(&mut reflectivity, key, name, Cursor::color)?,
-            "transparency" => c.field(&mut transparency, key, name, Cursor::color)?,
+            "reflectivity" => c.field(&mut reflectivity, key, name, Cursor::reflectance)?,
+            "transparency" => c.field(&mut transparency, key, name, Cursor::reflectance)?,
             "refractionIndex" => c.field(&mut refraction_index, key, name, Cursor::positive)?,
-            "absorption" => c.field(&mut absorption, key, name, Cursor::color)?,
+            "absorption" => c.field(&mut absorption, key, name, Cursor::rates)?,
             "emission" => c.field(&mut emission, key, name, Cursor::color)?,
             "texture" => c.field(&mut texture, key, name, |c, what| {
                 let path = c.word(what)?;

@@ -41,6 +41,10 @@ pub(super) const OBJECTS: &[&str] = &[
     "BsplineCurve",
 ];
 
+/// The deepest nesting of `Group`s and `Transform`s accepted (the top-level
+/// group counts as 1).
+pub const MAX_NESTING: usize = 200;
+
 /// What the enclosing groups and transforms impose on an object.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Frame {
@@ -48,15 +52,39 @@ pub(super) struct Frame {
     pub(super) transform: Matrix4<f64>,
     /// The material index in force.
     pub(super) material: usize,
+    /// How many groups and transforms enclose the object.
+    pub(super) depth: usize,
 }
 
 impl Frame {
-    /// The frame of the top-level group: identity, material 0.
+    /// The frame of the top-level group's contents: identity, material 0,
+    /// depth 1.
     pub(super) fn root() -> Self {
         Frame {
             transform: Matrix4::identity(),
             material: 0,
+            depth: 1,
         }
+    }
+
+    /// The frame inside the group or transform whose keyword `key` was just
+    /// read in this frame: one level deeper, or an error beyond
+    /// [`MAX_NESTING`].
+    fn nested(self, c: &Cursor<'_>, key: Token<'_>) -> Result<Self> {
+        if self.depth >= MAX_NESTING {
+            return Err(c.error(
+                key.pos,
+                format!(
+                    "this {} is nested more than {MAX_NESTING} deep (Groups and Transforms nest \
+                     at most {MAX_NESTING} deep)",
+                    key.text
+                ),
+            ));
+        }
+        Ok(Frame {
+            depth: self.depth + 1,
+            ..self
+        })
     }
 }
 
@@ -133,7 +161,7 @@ fn transform(c: &mut Cursor<'_>, res: &mut Resources, out: &mut Flat, frame: Fra
         } else {
             let inner = Frame {
                 transform: frame.transform * matrix,
-                material: frame.material,
+                ..frame
             };
             object(c, res, out, key, inner, NAME)?;
             held = Some(key);
@@ -158,8 +186,8 @@ fn object(
     context: &str,
 ) -> Result<()> {
     let shape = match key.text {
-        "Group" => return group(c, res, out, frame),
-        "Transform" => return transform(c, res, out, frame),
+        "Group" => return group(c, res, out, frame.nested(c, key)?),
+        "Transform" => return transform(c, res, out, frame.nested(c, key)?),
         "RevSurface" => rev_surface(c)?,
         name if CURVES.contains(&name) => tube(c, key)?,
         name => match primitive(c, res, name, key.pos) {

@@ -1,7 +1,9 @@
 //! `Render { samples N  maxDepth N  shadows true|false  integrator whitted|path
-//! toneMap clamp|reinhard }`: every key optional, each at most once.
+//! toneMap clamp|reinhard }`: every key optional, each at most once;
+//! `maxDepth` at most [`MAX_DEPTH`].
 
 use super::cursor::{Cursor, Result};
+use crate::effects::MAX_DEPTH;
 use crate::scene::{Integrator, RenderSettings, ToneMap};
 
 const BLOCK: &str = "Render";
@@ -17,7 +19,14 @@ pub(super) fn render(c: &mut Cursor<'_>) -> Result<RenderSettings> {
                 Ok(c.whole(w, 1)?.0)
             })?,
             "maxDepth" => c.field(&mut settings.max_depth, key, BLOCK, |c, w| {
-                Ok(c.whole(w, 0)?.0)
+                let (depth, at) = c.whole(w, 0)?;
+                if depth > MAX_DEPTH {
+                    return Err(c.error(
+                        at,
+                        format!("'maxDepth' is {depth}, more than the largest, {MAX_DEPTH}"),
+                    ));
+                }
+                Ok(depth)
             })?,
             "shadows" => c.field(&mut settings.shadows, key, BLOCK, |c, w| {
                 c.choice(w, &[("true", true), ("false", false)])

@@ -17,6 +17,8 @@ mod errors_values;
 mod format_example;
 #[path = "tests/lexing.rs"]
 mod lexing;
+#[path = "tests/limits.rs"]
+mod limits;
 #[path = "tests/objects.rs"]
 mod objects;
 #[path = "tests/robustness.rs"]
@@ -25,6 +27,8 @@ mod robustness;
 mod settings;
 #[path = "tests/transforms.rs"]
 mod transforms;
+#[path = "tests/warnings.rs"]
+mod warnings;
 
 /// A camera block on one line (line 1 of every test scene).
 const CAMERA: &str =

@@ -277,3 +277,58 @@ fn tube_of_coincident_points() {
         "the BsplineCurve's control points all coincide",
     );
 }
+
+#[test]
+fn reflectances_are_fractions_of_the_light() {
+    // Line 2 column 32 is the second component of the colour.
+    for key in [
+        "diffuseColor",
+        "specularColor",
+        "reflectivity",
+        "transparency",
+    ] {
+        let text = format!("{CAMERA}Materials {{ Material {{ {key} 1 1.5 0 }} }}");
+        let column = text.lines().nth(1).unwrap().find("1.5").unwrap() + 1;
+        assert_error(
+            &text,
+            2,
+            column,
+            &format!("'{key}' is a fraction of the light, at most 1, found 1.5"),
+        );
+    }
+    // 1 itself is allowed, and absorption is a rate: any finite value.
+    let scene = super::parse(&format!(
+        "{CAMERA}Materials {{ Material {{ transparency 1 1 1 absorption 1e308 0 0 }} }}"
+    ));
+    assert_eq!(scene.materials[0].absorption.x, 1e308);
+}
+
+#[test]
+fn radiances_are_at_most_1e100() {
+    let text = format!("{CAMERA}Lights {{ PointLight {{ position 0 0 0 color 1 1 1e101 }} }}");
+    assert_error(
+        &text,
+        2,
+        48,
+        "'color' is a radiance, at most 1e100, found 1e101",
+    );
+    let text = format!("{CAMERA}Materials {{ Material {{ emission 2e100 0 0 }} }}");
+    assert_error(
+        &text,
+        2,
+        33,
+        "'emission' is a radiance, at most 1e100, found 2e100",
+    );
+    let scene = super::parse(&format!("{CAMERA}Background {{ color 1e100 5 0 }}"));
+    assert_eq!(scene.background.x, 1e100);
+}
+
+#[test]
+fn tiny_and_huge_numbers_print_in_exponent_form() {
+    assert_error(
+        &format!("{CAMERA}Background {{ color -1e-320 0 0 }}"),
+        2,
+        20,
+        "'color' must not be negative, found -1e-320",
+    );
+}
