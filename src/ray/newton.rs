@@ -595,19 +595,21 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
     }
 
     /// Moves parameter `k` into its domain: modulo the period if periodic,
-    /// else clamped. Returns the new value and whether it was clamped.
+    /// else clamped. Returns the new value and whether it was clamped. A NaN
+    /// parameter, or a domain that is not an interval (a surface that breaks
+    /// its contract), gives the domain's start; never a panic.
     #[inline]
     fn confine(&self, k: usize, x: f64) -> (f64, bool) {
         let (a, b) = self.domain[k];
         if x >= a && x <= b {
             return (x, false);
         }
-        if self.periodic[k] && b > a {
+        if self.periodic[k] && b > a && x.is_finite() {
             let w = a + (x - a).rem_euclid(b - a);
             // rem_euclid may round up to the period itself.
             return (if w > b { a } else { w }, false);
         }
-        (x.clamp(a, b), true)
+        (if x > b && a <= b { b } else { a }, true)
     }
 
     /// Newton's method on `F(t, u, v) = o + t·d − S(u, v)` from `(t, uv)`,
@@ -726,10 +728,13 @@ impl UnitRay {
         length / self.norm_of_scaled / self.largest
     }
 
-    /// The run with its `t` in the caller's units.
+    /// The run with its `t` in the caller's units (not converged if that
+    /// `t` is not finite).
     fn run_from_unit(&self, run: NewtonRun) -> NewtonRun {
+        let t = self.from_unit(run.t);
         NewtonRun {
-            t: self.from_unit(run.t),
+            t,
+            converged: run.converged && t.is_finite(),
             ..run
         }
     }
