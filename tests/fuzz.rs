@@ -704,6 +704,16 @@ struct UserCurve {
 }
 
 impl UserCurve {
+    /// The contract-abiding kinds move `t` into the domain as the crate's
+    /// curves do (NaN to the start); the others use it as it is.
+    fn inside(&self, t: f64) -> f64 {
+        if !matches!(self.kind, Kind::Sphere | Kind::Torus) {
+            return t;
+        }
+        let (a, b) = self.domain();
+        if t >= a { t.min(b) } else { a }
+    }
+
     fn line(a: (f64, f64), b: (f64, f64)) -> Bezier<2> {
         Bezier::new(vec![Point2::new(a.0, a.1), Point2::new(b.0, b.1)]).unwrap()
     }
@@ -723,6 +733,7 @@ impl Curve<2> for UserCurve {
 
     fn eval(&self, t: f64) -> Point2<f64> {
         let r = self.r;
+        let t = self.inside(t);
         match self.kind {
             Kind::NanEval => Point2::new(f64::NAN, t),
             Kind::InfiniteEval => Point2::new(f64::INFINITY, t),
@@ -733,6 +744,7 @@ impl Curve<2> for UserCurve {
 
     fn derivative(&self, t: f64) -> Vector2<f64> {
         let r = self.r;
+        let t = self.inside(t);
         match self.kind {
             Kind::NanEval => Vector2::new(f64::NAN, f64::NAN),
             Kind::InfiniteEval => Vector2::new(0.0, 1.0),
@@ -1061,23 +1073,26 @@ fn fuzz_revolutions() {
     });
 }
 
-/// A placed revolution with a random tolerance, or `None` if a call
-/// panicked.
-fn revolution<C: Curve<2>>(f: &mut Fuzz, c: C) -> Option<Revolution<C>> {
+/// A placed revolution with a random tolerance and how it was placed, or
+/// `None` if a call panicked.
+fn revolution<C: Curve<2>>(f: &mut Fuzz, c: C) -> Option<(Revolution<C>, String)> {
     let mut s = f.call("Revolution::new", || Revolution::new(c))?;
+    let mut how = String::new();
     if f.chance(2) {
         let origin = Point3::new(f.coordinate(10.0), f.coordinate(10.0), f.coordinate(10.0));
         let axis = Vector3::new(f.number(), f.number(), f.number());
         if let Some(axis) = Unit::try_new(axis, 0.0) {
             s = f.call("Revolution::with_axis", || s.with_axis(origin, axis))?;
+            how += &format!(", axis through {origin:?} along {axis:?}");
         }
     }
     if f.chance(3) {
         let relative = f.number();
         let tolerance = f.call("Tolerance::relative", || Tolerance::relative(relative))?;
         s = f.call("Revolution::with_tolerance", || s.with_tolerance(tolerance))?;
+        how += &format!(", tolerance {relative:e}");
     }
-    Some(s)
+    Some((s, how))
 }
 
 /// A ray aimed at the box `b` (from outside, inside or far away), or an
@@ -1110,9 +1125,11 @@ fn ray_at(f: &mut Fuzz, b: &Aabb) -> Ray {
 /// and partials are judged only for profiles that keep the contract: a
 /// user's curve that returns NaN makes its surface's points NaN.
 fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judged: bool) {
-    let Some(s) = revolution(f, c) else {
+    let Some((s, how)) = revolution(f, c) else {
         return;
     };
+    let profile = format!("{profile}{how}");
+    let profile = profile.as_str();
     let Some(bounds) = f.call("Intersect::bounds", || s.bounds()) else {
         return;
     };
@@ -1170,7 +1187,7 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
 }
 
 impl Fuzz {
-    fn mesh_is_sane(&mut self, profile: &'static str, mesh: &Mesh, tolerance: f64) {
+    fn mesh_is_sane(&mut self, profile: &str, mesh: &Mesh, tolerance: f64) {
         let n = mesh.positions.len();
         let ok = n <= Mesh::MAX_VERTICES
             && mesh.normals.len() == n
@@ -1203,7 +1220,7 @@ fn fuzz_newton() {
 }
 
 fn newton_case<C: Curve<2>>(f: &mut Fuzz, c: C) {
-    let Some(s) = revolution(f, c) else {
+    let Some((s, _)) = revolution(f, c) else {
         return;
     };
     // A huge depth is clamped to MAX_DEPTH (2¹⁶ leaves, 65536 patch
