@@ -41,8 +41,9 @@ use std::time::{Duration, Instant};
 /// A single call that runs longer than this is a hang.
 const CALL_LIMIT: Duration = Duration::from_secs(5);
 
-/// Failures listed in full (the rest are counted).
-const LISTED_FAILURES: usize = 30;
+/// Failures listed in full, in all and per call (the rest are counted).
+const LISTED_FAILURES: usize = 40;
+const LISTED_PER_CALL: u64 = 6;
 
 // ---------------------------------------------------------------------------
 // The harness: worker, watchdog, per-call catch_unwind
@@ -126,8 +127,9 @@ impl Fuzz {
 
     fn fail(&mut self, name: &'static str, what: String) {
         self.failed += 1;
-        *self.tally.entry(name).or_default() += 1;
-        if self.failures.len() < LISTED_FAILURES {
+        let tally = self.tally.entry(name).or_default();
+        *tally += 1;
+        if *tally <= LISTED_PER_CALL && self.failures.len() < LISTED_FAILURES {
             self.failures
                 .push(format!("{name} (seed {}): {what}", self.seed));
         }
