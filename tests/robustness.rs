@@ -507,6 +507,50 @@ fn meshes_beyond_max_vertices_are_refused() {
     assert!(mesh.positions.len() <= Mesh::MAX_VERTICES && mesh.bound <= 1e-4);
 }
 
+/// A line profile whose one Bézier span claims the knots `knots`.
+struct Spans {
+    knots: (f64, f64),
+}
+
+impl Curve<2> for Spans {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn eval(&self, t: f64) -> Point2<f64> {
+        Point2::new(1.0, t)
+    }
+    fn derivative(&self, _: f64) -> Vector2<f64> {
+        Vector2::new(0.0, 1.0)
+    }
+    fn bezier_spans(&self) -> Option<Vec<revolve::BezierSpan<2>>> {
+        let curve = Bezier::new(vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0)]).unwrap();
+        Some(vec![revolve::BezierSpan {
+            knots: self.knots,
+            curve,
+        }])
+    }
+}
+
+#[test]
+fn tessellating_spans_that_are_not_finite_is_an_error() {
+    for knots in [(f64::NEG_INFINITY, f64::INFINITY), (f64::NAN, 1.0)] {
+        let surface = Revolution::new(Spans { knots });
+        assert_eq!(
+            surface.tessellate(0.1),
+            Err(Error::NotPiecewisePolynomial),
+            "{knots:?}"
+        );
+    }
+    // The same span on finite knots is a cylinder.
+    let surface = Revolution::new(Spans { knots: (0.0, 1.0) });
+    let mesh = surface.tessellate(0.1).unwrap();
+    assert!(
+        mesh.positions
+            .iter()
+            .all(|p| (p.x.hypot(p.z) - 1.0).abs() < 1e-12)
+    );
+}
+
 // ---------------------------------------------------------------------------
 // The Newton intersector
 // ---------------------------------------------------------------------------
