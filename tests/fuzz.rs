@@ -65,6 +65,9 @@ struct Fuzz {
     failed: u64,
     /// Failures per call.
     tally: BTreeMap<&'static str, u64>,
+    /// Hits the intersectors returned (so that a target that never hits
+    /// shows).
+    hits: u64,
 }
 
 thread_local! {
@@ -167,6 +170,7 @@ fn fuzz(name: &'static str, seeds: u64, case: fn(&mut Fuzz)) {
                 failures: Vec::new(),
                 failed: 0,
                 tally: BTreeMap::new(),
+                hits: 0,
             };
             for seed in range {
                 fuzz.seed = seed;
@@ -177,7 +181,7 @@ fn fuzz(name: &'static str, seeds: u64, case: fn(&mut Fuzz)) {
                     fuzz.fail("(the fuzz case)", panic_message(&*payload));
                 }
             }
-            (fuzz.failures, fuzz.failed, fuzz.tally)
+            (fuzz.failures, fuzz.failed, fuzz.tally, fuzz.hits)
         })
         .expect("spawn the fuzz worker");
     let (mut last, mut since) = (u64::MAX, Instant::now());
@@ -195,7 +199,7 @@ fn fuzz(name: &'static str, seeds: u64, case: fn(&mut Fuzz)) {
             );
         }
     }
-    let (failures, failed, tally) = worker.join().unwrap_or_else(|payload| {
+    let (failures, failed, tally, hits) = worker.join().unwrap_or_else(|payload| {
         panic!(
             "{name}: the fuzz case itself failed at seed {} (after `{}`): {}",
             progress.seed.load(Ordering::Relaxed),
@@ -205,7 +209,7 @@ fn fuzz(name: &'static str, seeds: u64, case: fn(&mut Fuzz)) {
     });
     let calls = progress.calls.load(Ordering::Relaxed);
     println!(
-        "fuzz {name}: {calls} calls, seeds {seeds:?}, {:.1} s, {failed} failures",
+        "fuzz {name}: {calls} calls, seeds {seeds:?}, {:.1} s, {hits} hits, {failed} failures",
         start.elapsed().as_secs_f64()
     );
     assert!(
@@ -360,14 +364,12 @@ impl Fuzz {
             0 => {
                 // Clamped ends.
                 let m = len.saturating_sub(p.saturating_add(1));
-                for i in 0..len {
-                    knots[i] = if i <= p {
-                        0.0
+                for (i, k) in knots.iter_mut().enumerate() {
+                    if i <= p {
+                        *k = 0.0;
                     } else if i >= m {
-                        1.0
-                    } else {
-                        knots[i]
-                    };
+                        *k = 1.0;
+                    }
                 }
             }
             1 => {
@@ -1064,7 +1066,7 @@ fn profile(f: &mut Fuzz) -> Option<Profile> {
 /// intersector), and tessellation.
 #[test]
 fn fuzz_revolutions() {
-    fuzz("revolutions", 6_000, |f| match profile(f) {
+    fuzz("revolutions", 20_000, |f| match profile(f) {
         Some(Profile::Bezier(c)) => revolution_case(f, c, "Bezier", true),
         Some(Profile::BSpline(c)) => revolution_case(f, c, "BSpline", true),
         Some(Profile::User(c)) => {
@@ -1171,6 +1173,7 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
         let ray = ray_at(f, &bounds);
         let (lo, hi) = f.t_range();
         if let Some(Some(hit)) = f.call("Revolution::intersect", || s.intersect(&ray, lo, hi)) {
+            f.hits += 1;
             f.check(sane_hit(&hit, lo, hi), "Revolution::intersect", || {
                 format!("{profile}: {ray:?} in ({lo:e}, {hi:e}): {hit:?}")
             });
@@ -1265,6 +1268,7 @@ fn newton_case<C: Curve<2>>(f: &mut Fuzz, c: C) {
         if let Some(Some(hit)) = f.call("NewtonIntersector::intersect", || {
             newton.intersect(&ray, lo, hi)
         }) {
+            f.hits += 1;
             f.check(
                 sane_hit(&hit, lo, hi),
                 "NewtonIntersector::intersect",

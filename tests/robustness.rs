@@ -439,7 +439,8 @@ mod testing_support {
     #[test]
     fn bad_degree_ranges_are_clamped() {
         // An empty range means its start.
-        for c in values(testing::bezier_curve::<2>(5..=2, 1.0), 10) {
+        let (start, end) = (5, 2);
+        for c in values(testing::bezier_curve::<2>(start..=end, 1.0), 10) {
             assert_eq!(c.degree(), 5);
         }
         // Degrees above MAX_DEGREE (or beyond the points any count allows).

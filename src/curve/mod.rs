@@ -345,7 +345,8 @@ pub(crate) fn check_derivatives<const D: usize>(
                 h[j] = ((h[j + 1] - h[j]) * factor) / w;
             }
             let current = magnitude(&h[..len]);
-            if !(current + rounding * previous / w <= MAX_DERIVATIVE) {
+            let bound = current + rounding * previous / w;
+            if bound > MAX_DERIVATIVE || bound.is_nan() {
                 return Err(Error::DerivativeOverflow { order });
             }
             if current == 0.0 {
