@@ -120,7 +120,10 @@ impl<const D: usize> Bezier<D> {
 
     /// The hodograph: the derivative curve `P′(t)`, a Bézier of degree `n − 1`
     /// with control points `n·(Pᵢ₊₁ − Pᵢ)`. The derivative of a constant curve
-    /// (degree 0) is the constant zero curve.
+    /// (degree 0) is the constant zero curve. Its points may exceed
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (up to
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE)); its derivatives are
+    /// this curve's higher ones, finite.
     pub fn hodograph(&self) -> Bezier<D> {
         let n = self.degree();
         if n == 0 {

@@ -377,7 +377,11 @@ impl<const D: usize> BSpline<D> {
     /// the basis function of `Qᵢ` vanishes identically (`tᵢ₊ₚ₊₁ = tᵢ₊₁`): that
     /// `Qᵢ` and one copy of the knot are dropped, so the result again satisfies
     /// the multiplicity rule of [`new`](Self::new). For degree 0 the
-    /// derivative is the zero spline on the same knots.
+    /// derivative is the zero spline on the same knots. Its points may exceed
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (up to
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE)); its pieces are the
+    /// hodographs of this curve's, so its derivatives are this curve's higher
+    /// ones, finite.
     pub fn derivative_spline(&self) -> BSpline<D> {
         let p = self.degree;
         if p == 0 {

@@ -288,12 +288,12 @@ impl NaturalSize {
     /// overflows or underflows.
     fn is_exceeded_by(&self, k: usize, m: f64, rel: f64) -> bool {
         const NEGLIGIBLE: f64 = 1e-12;
-        let falling: f64 = (self.degree + 1 - k.min(self.degree)..=self.degree)
-            .map(|x| x as f64)
-            .product();
         if self.scale == 0.0 {
             return true;
         }
+        let falling: f64 = (self.degree + 1 - k.min(self.degree)..=self.degree)
+            .map(|x| x as f64)
+            .product();
         let size = self.scale * falling / self.width.powi(k as i32);
         if size.is_finite() && size >= 1e-290 {
             return m * rel > NEGLIGIBLE * size;
@@ -306,7 +306,7 @@ impl NaturalSize {
     }
 }
 
-/// The unit tangent from the first derivative of order `1 ..= max_order`
+/// The unit tangent from the first derivative of order `1 ..= size.degree`
 /// that is not negligible, oriented toward increasing `t`.
 ///
 /// Near `t₀` the curve is `C(t₀) + C⁽ᵏ⁾(t₀)(t − t₀)ᵏ/k! + …`, so the limit of
