@@ -40,7 +40,7 @@ impl Aabb {
     pub fn is_empty(&self) -> bool {
         (0..3).any(|i| {
             let (lo, hi) = (self.min[i], self.max[i]);
-            !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY
+            lo > hi || lo.is_nan() || hi.is_nan() || lo == f64::INFINITY || hi == f64::NEG_INFINITY
         })
     }
 
@@ -156,7 +156,8 @@ impl Aabb {
     /// or range with a NaN, or `t_min > t_max`, gives `None`.
     pub fn clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
         let nan_ray = ray.origin.iter().chain(ray.dir.iter()).any(|c| c.is_nan());
-        if self.is_empty() || nan_ray || !(t_min <= t_max) {
+        let bad_range = t_min > t_max || t_min.is_nan() || t_max.is_nan();
+        if self.is_empty() || nan_ray || bad_range {
             return None;
         }
         let (mut lo, mut hi) = (t_min, t_max);

@@ -81,7 +81,9 @@ fn clamp_degrees(degrees: &RangeInclusive<usize>) -> RangeInclusive<usize> {
 /// `[0, MAX_COORDINATE]` (NaN and negative values give 0).
 pub fn point<const D: usize>(scale: f64) -> impl Strategy<Value = Point<f64, D>> {
     let scale = clamp_scale(scale, 0.0, crate::MAX_COORDINATE);
-    proptest::array::uniform::<_, D>(-scale..=scale).prop_map(|c| Point::from(SVector::from(c)))
+    // Drawn in [−1, 1] and scaled: proptest refuses empty float ranges.
+    proptest::array::uniform::<_, D>(-1.0..=1.0)
+        .prop_map(move |c| Point::from(SVector::from(c) * scale))
 }
 
 /// A Bézier curve with a degree in `degrees` and coordinates in

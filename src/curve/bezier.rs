@@ -2,7 +2,7 @@
 
 use super::flatten::{Flattening, flatten_pieces};
 use super::{
-    check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, ln_falling, point_bounds,
+    NaturalSize, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, point_bounds,
     tangent_from_derivatives, validate_points,
 };
 use crate::bernstein::{self, de_casteljau, differentiate_in_place, subdivide};
@@ -120,7 +120,10 @@ impl<const D: usize> Bezier<D> {
 
     /// The hodograph: the derivative curve `P′(t)`, a Bézier of degree `n − 1`
     /// with control points `n·(Pᵢ₊₁ − Pᵢ)`. The derivative of a constant curve
-    /// (degree 0) is the constant zero curve.
+    /// (degree 0) is the constant zero curve. Its points may exceed
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (up to
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE)); its derivatives are
+    /// this curve's higher ones, finite.
     pub fn hodograph(&self) -> Bezier<D> {
         let n = self.degree();
         if n == 0 {
@@ -209,8 +212,12 @@ impl<const D: usize> Curve<D> for Bezier<D> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.degree();
         let scale = self.coeffs.iter().fold(0.0_f64, |m, c| m.max(c.amax()));
-        let log_natural = |k: usize| scale.ln() + ln_falling(n, k);
-        tangent_from_derivatives(n, t >= 1.0, log_natural, |k| self.nth_derivative(t, k))
+        let size = NaturalSize {
+            scale,
+            degree: n,
+            width: 1.0,
+        };
+        tangent_from_derivatives(size, t >= 1.0, |k| self.nth_derivative(t, k))
     }
 
     #[inline]

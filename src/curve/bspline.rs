@@ -9,7 +9,7 @@
 use super::flatten::{Flattening, flatten_pieces};
 use super::pieces::PieceTable;
 use super::{
-    MAX_DERIVATIVE, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, ln_falling,
+    MAX_DERIVATIVE, NaturalSize, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain,
     point_bounds, tangent_from_derivatives, validate_points,
 };
 use crate::bernstein::{self, lerp};
@@ -377,7 +377,11 @@ impl<const D: usize> BSpline<D> {
     /// the basis function of `Qᵢ` vanishes identically (`tᵢ₊ₚ₊₁ = tᵢ₊₁`): that
     /// `Qᵢ` and one copy of the knot are dropped, so the result again satisfies
     /// the multiplicity rule of [`new`](Self::new). For degree 0 the
-    /// derivative is the zero spline on the same knots.
+    /// derivative is the zero spline on the same knots. Its points may exceed
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (up to
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE)); its pieces are the
+    /// hodographs of this curve's, so its derivatives are this curve's higher
+    /// ones, finite.
     pub fn derivative_spline(&self) -> BSpline<D> {
         let p = self.degree;
         if p == 0 {
@@ -562,8 +566,12 @@ impl<const D: usize> Curve<D> for BSpline<D> {
             .points
             .iter()
             .fold(0.0_f64, |m, c| m.max(c.coords.amax()));
-        let log_natural = |k: usize| scale.ln() + ln_falling(p, k) - k as f64 * (b - a).ln();
-        tangent_from_derivatives(p, t >= domain.1, log_natural, |k| self.nth_derivative(t, k))
+        let size = NaturalSize {
+            scale,
+            degree: p,
+            width: b - a,
+        };
+        tangent_from_derivatives(size, t >= domain.1, |k| self.nth_derivative(t, k))
     }
 
     /// As [`eval`](Curve::eval); the derivative of the piece's Bézier form is

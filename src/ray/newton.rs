@@ -462,7 +462,7 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
     pub fn newton(&self, ray: &Ray, t: f64, u: f64, v: f64) -> NewtonRun {
         match UnitRay::new(ray) {
             Some(units) => {
-                let run = self.run(&units.ray, units.to_unit(t), (u, v), &self.limits());
+                let run = self.run(&units.ray, units.length_of(t), (u, v), &self.limits());
                 units.run_from_unit(run)
             }
             None => NewtonRun {
@@ -491,11 +491,11 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
     #[inline]
     fn search<R: Recorder>(&self, ray: &Ray, t_min: f64, t_max: f64, rec: &mut R) -> Option<Hit> {
         let units = UnitRay::new(ray)?;
-        if !(t_min < t_max) {
+        if t_min >= t_max || t_min.is_nan() || t_max.is_nan() {
             return None;
         }
-        let hit = self.search_unit(&units, units.to_unit(t_min), units.to_unit(t_max), rec)?;
-        let t = units.from_unit(hit.t);
+        let hit = self.search_unit(&units, units.length_of(t_min), units.length_of(t_max), rec)?;
+        let t = units.parameter_of(hit.t);
         if t.is_finite() && t > t_min && t < t_max {
             Some(Hit { t, ..hit })
         } else {
@@ -595,19 +595,21 @@ impl<S: BoundedSurface> NewtonIntersector<S> {
     }
 
     /// Moves parameter `k` into its domain: modulo the period if periodic,
-    /// else clamped. Returns the new value and whether it was clamped.
+    /// else clamped. Returns the new value and whether it was clamped. A NaN
+    /// parameter, or a domain that is not an interval (a surface that breaks
+    /// its contract), gives the domain's start; never a panic.
     #[inline]
     fn confine(&self, k: usize, x: f64) -> (f64, bool) {
         let (a, b) = self.domain[k];
         if x >= a && x <= b {
             return (x, false);
         }
-        if self.periodic[k] && b > a {
+        if self.periodic[k] && b > a && x.is_finite() {
             let w = a + (x - a).rem_euclid(b - a);
             // rem_euclid may round up to the period itself.
             return (if w > b { a } else { w }, false);
         }
-        (x.clamp(a, b), true)
+        (if x > b && a <= b { b } else { a }, true)
     }
 
     /// Newton's method on `F(t, u, v) = o + t·d − S(u, v)` from `(t, uv)`,
@@ -717,19 +719,22 @@ impl UnitRay {
     }
 
     /// A ray parameter in the caller's units as a length.
-    fn to_unit(&self, t: f64) -> f64 {
+    fn length_of(&self, t: f64) -> f64 {
         t * self.largest * self.norm_of_scaled
     }
 
     /// A length along the ray as a ray parameter in the caller's units.
-    fn from_unit(&self, length: f64) -> f64 {
+    fn parameter_of(&self, length: f64) -> f64 {
         length / self.norm_of_scaled / self.largest
     }
 
-    /// The run with its `t` in the caller's units.
+    /// The run with its `t` in the caller's units (not converged if that
+    /// `t` is not finite).
     fn run_from_unit(&self, run: NewtonRun) -> NewtonRun {
+        let t = self.parameter_of(run.t);
         NewtonRun {
-            t: self.from_unit(run.t),
+            t,
+            converged: run.converged && t.is_finite(),
             ..run
         }
     }

@@ -100,8 +100,9 @@ impl<C: Curve<2>> Revolution<C> {
     /// flattening certifies (for half the tolerance), below what 65536
     /// angular steps reach, or where the mesh would exceed 2²⁴ vertices (its
     /// `min` is a tolerance that fits, see [`Mesh::MAX_VERTICES`]);
-    /// [`Error::NotPiecewisePolynomial`] for a profile without
-    /// [Bézier spans](Curve::bezier_spans) (no certified bound is possible);
+    /// [`Error::NotPiecewisePolynomial`] for a profile without usable
+    /// [Bézier spans](Curve::bezier_spans) (none, so no certified bound is
+    /// possible, or spans that give samples with a NaN or infinite value);
     /// [`Error::AllocationFailed`] if the memory for the mesh cannot be had.
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
         let Plan {
@@ -210,6 +211,16 @@ impl<C: Curve<2>> Revolution<C> {
             spans.iter().map(|s| (s.curve.points(), s.knots)),
             0.5 * tolerance,
         )?;
+        // A user's spans that break the Curve contract (knots not finite, or
+        // NaN values) must not become NaN vertices.
+        // lead: report `self.contract_error()` before this, once merged.
+        let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
+        let usable = flat.samples.iter().all(|s| {
+            s.t.is_finite() && finite(s.point.coords.as_slice()) && finite(s.derivative.as_slice())
+        });
+        if !usable {
+            return Err(Error::NotPiecewisePolynomial);
+        }
         // Smallest N with R(1 − cos(π/N)) ≤ tolerance/2 (at most the cap,
         // by the check above).
         let steps = if r_max == 0.0 {
