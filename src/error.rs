@@ -166,6 +166,15 @@ pub enum Error {
         /// The number of pieces tried.
         pieces: usize,
     },
+    /// A surface's placement has an origin that is not finite or beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), or an axis that is not a
+    /// finite non-zero vector.
+    InvalidPlacement {
+        /// The origin given.
+        origin: nalgebra::Point3<f64>,
+        /// The axis given.
+        axis: nalgebra::Vector3<f64>,
+    },
     /// More segments were asked of [`Curve::try_discretize`](crate::Curve::try_discretize)
     /// than [`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS).
     TooManySegments {
@@ -318,6 +327,18 @@ impl fmt::Display for Error {
                 f,
                 "the profile could not be approximated by {pieces} cubic pieces: is it \
                  continuous and differentiable?"
+            ),
+            Error::InvalidPlacement { origin, axis } => write!(
+                f,
+                "cannot place a surface with its axis through ({}, {}, {}) along ({}, {}, {}): \
+                 the origin must be finite and within {}, the axis a finite non-zero vector",
+                Num(origin.x),
+                Num(origin.y),
+                Num(origin.z),
+                Num(axis.x),
+                Num(axis.y),
+                Num(axis.z),
+                Num(crate::MAX_COORDINATE)
             ),
             Error::TooManySegments { segments, max } => write!(
                 f,

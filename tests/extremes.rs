@@ -229,3 +229,49 @@ fn cone_apex_at_extreme_sizes() {
         assert!(hit.normal.iter().all(|c| c.is_finite()));
     }
 }
+
+/// A placement through a NaN or infinite origin, or along a NaN or zero
+/// axis, is not applied: `try_with_axis` names it, `with_axis` leaves the
+/// surface in place and empty to rays, and evaluation stays finite.
+#[test]
+fn bad_placements_are_errors() {
+    use revolve::nalgebra::Unit;
+    let good_axis = Vector3::y_axis();
+    let cases = [
+        (Point3::new(0.0, f64::NAN, 0.0), good_axis),
+        (Point3::new(f64::NEG_INFINITY, 0.0, 0.0), good_axis),
+        (Point3::new(0.0, 0.0, 1e101), good_axis),
+        (
+            Point3::origin(),
+            Unit::new_unchecked(Vector3::new(f64::NAN, 0.0, 0.0)),
+        ),
+        (Point3::origin(), Unit::new_unchecked(Vector3::zeros())),
+    ];
+    for (origin, axis) in cases {
+        let err = cylinder(1.0).try_with_axis(origin, axis).unwrap_err();
+        assert!(matches!(err, Error::InvalidPlacement { .. }), "{err:?}");
+        let s = cylinder(1.0).with_axis(origin, axis);
+        // (NaN ≠ NaN: compare the messages.)
+        assert_eq!(
+            s.contract_error().map(|e| e.to_string()),
+            Some(err.to_string())
+        );
+        assert!(
+            s.intersect(&side_ray(1.0, 1.0), 0.0, f64::INFINITY)
+                .is_none()
+        );
+        assert!(s.bounds().is_empty());
+        assert_eq!(s.eval(0.5, 1.0), cylinder(1.0).eval(0.5, 1.0));
+    }
+    // A unit made unchecked but of another length is renormalized.
+    let s = cylinder(1.0)
+        .try_with_axis(
+            Point3::origin(),
+            Unit::new_unchecked(Vector3::new(0.0, 3.0, 0.0)),
+        )
+        .unwrap();
+    let hit = s
+        .intersect(&side_ray(1.0, 1.0), 0.0, f64::INFINITY)
+        .unwrap();
+    assert_rel(hit.t, 9.0, 1e-15, "t");
+}

@@ -357,7 +357,41 @@ impl<C: Curve<2>> Revolution<C> {
     /// `axis` (the local `y` axis maps to `axis`, the local origin to
     /// `origin`). The rotation is the shortest one taking `y` to `axis`; for
     /// `axis = −y` it is the half turn about `x`.
+    ///
+    /// Never panics. An `origin` with a NaN or infinite coordinate, or one
+    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), or an `axis` that is
+    /// not a finite non-zero vector, is not applied: the surface stays where
+    /// it was, becomes empty to rays (no hits, empty bounds), and
+    /// [`contract_error`](Self::contract_error) says why;
+    /// [`try_with_axis`](Self::try_with_axis) returns the error instead.
     pub fn with_axis(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
+        match placement(origin, axis) {
+            Ok(axis) => self.place(origin, axis),
+            Err(e) => {
+                self.exact = None;
+                self.broken = Some(e);
+                self
+            }
+        }
+    }
+
+    /// As [`with_axis`](Self::with_axis), but a bad placement is an error.
+    ///
+    /// # Errors
+    /// [`Error::InvalidPlacement`] for an origin that is not finite or
+    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), or an axis that is
+    /// not a finite non-zero vector.
+    pub fn try_with_axis(
+        self,
+        origin: Point3<f64>,
+        axis: Unit<Vector3<f64>>,
+    ) -> Result<Self, Error> {
+        let axis = placement(origin, axis)?;
+        Ok(self.place(origin, axis))
+    }
+
+    /// Places the surface (`origin` and `axis` checked by [`placement`]).
+    fn place(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
         // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
         // of the dot product loses half the digits there).
         let y = Vector3::y();
@@ -417,6 +451,23 @@ impl<C: Curve<2>> Revolution<C> {
             at_end,
             finite_angle(theta).sin_cos(),
         )
+    }
+}
+
+/// The axis of a placement, renormalized (a `Unit` made unchecked may not
+/// be of unit length), if `origin` and `axis` are acceptable (see
+/// [`Revolution::with_axis`]).
+fn placement(origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Result<Unit<Vector3<f64>>, Error> {
+    let limit = crate::MAX_COORDINATE;
+    let origin_ok = origin.coords.iter().all(|c| c.abs() <= limit);
+    let axis = axis.into_inner();
+    let m = axis.amax();
+    let unit = (m > 0.0 && m.is_finite())
+        .then(|| Unit::try_new(axis / m, 0.0))
+        .flatten();
+    match unit {
+        Some(unit) if origin_ok => Ok(unit),
+        _ => Err(Error::InvalidPlacement { origin, axis }),
     }
 }
 
