@@ -459,8 +459,9 @@ impl SpanTable {
         tol: &Tolerance,
         report: &mut ExactReport,
     ) -> Option<LocalHit> {
-        // NaN-safe: false when either is NaN.
-        if !(t_min < t_max) || o.coords.iter().any(|c| !c.is_finite()) {
+        // NaN-safe: `ordered` is false when either is NaN.
+        let ordered = t_min < t_max;
+        if !ordered || o.coords.iter().any(|c| !c.is_finite()) {
             return None;
         }
         let m = d.amax();
@@ -478,8 +479,11 @@ impl SpanTable {
         let shift = if far { -o.coords.dot(&du) } else { 0.0 };
         let o = o.coords + du * shift;
         // The object lies in the ball of radius √2·scale about the origin.
-        if far && !(o.norm() * self.unit <= 3.0 * self.scale) {
-            return None;
+        if far {
+            let near_enough = o.norm() * self.unit <= 3.0 * self.scale;
+            if !near_enough {
+                return None;
+            }
         }
         let to_working = |t: f64| (t * dn - shift) * self.unit;
         let (lo, hi) = (to_working(t_min), to_working(t_max));
