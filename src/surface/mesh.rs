@@ -187,6 +187,9 @@ impl<C: Curve<2>> Revolution<C> {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(Error::InvalidTolerance { tolerance });
         }
+        if let Some(broken) = self.contract_error() {
+            return Err(broken.clone());
+        }
         let spans = self
             .profile()
             .bezier_spans()
@@ -211,9 +214,8 @@ impl<C: Curve<2>> Revolution<C> {
             spans.iter().map(|s| (s.curve.points(), s.knots)),
             0.5 * tolerance,
         )?;
-        // A user's spans that break the Curve contract (knots not finite, or
-        // NaN values) must not become NaN vertices.
-        // lead: report `self.contract_error()` before this, once merged.
+        // Spans that pass the contract check but still sample to non-finite
+        // values must not become NaN vertices.
         let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
         let usable = flat.samples.iter().all(|s| {
             s.t.is_finite() && finite(s.point.coords.as_slice()) && finite(s.derivative.as_slice())

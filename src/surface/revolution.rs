@@ -582,9 +582,8 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
 ///    widened to `±1` where the interval contains a multiple of `π` (and
 ///    likewise `−r sin θ` with the odd multiples of `π/2`).
 /// 3. **World frame.** The local box is moved by the rigid motion
-///    [`to_world`](Revolution::to_world): its centre is transformed and its
-///    half-extents multiplied by the absolute rotation matrix (the box of the
-///    rotated box). Finally the box grows by `16(n + 2)·ε` times the local
+///    [`to_world`](Revolution::to_world) by interval arithmetic
+///    ([`Aabb::transformed`]: exactly the box of the rotated box). Finally the box grows by `16(n + 2)·ε` times the local
 ///    plus world coordinate magnitudes (`n` the profile degree), which covers
 ///    the rounding of subdivision, of the transform and of
 ///    [`eval`](Surface::eval).
