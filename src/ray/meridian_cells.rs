@@ -309,12 +309,17 @@ impl Monotone {
                 // The roots for b = 2r and b = −2r.
                 let root_rising = -a_rising * if a_rising >= 0.0 { t.up } else { t.down };
                 let root_falling = a_falling * if a_falling >= 0.0 { t.up } else { t.down };
+                // (Plain comparisons: no NaN reaches here.)
+                let (larger, smaller) = (
+                    |a: f64, b: f64| if a > b { a } else { b },
+                    |a: f64, b: f64| if a < b { a } else { b },
+                );
                 if t.r > 0.0 {
-                    rising.0 = rising.0.max(root_rising);
-                    falling.1 = falling.1.min(root_falling);
+                    rising.0 = larger(rising.0, root_rising);
+                    falling.1 = smaller(falling.1, root_falling);
                 } else if t.r < 0.0 {
-                    rising.1 = rising.1.min(root_rising);
-                    falling.0 = falling.0.max(root_falling);
+                    rising.1 = smaller(rising.1, root_rising);
+                    falling.0 = larger(falling.0, root_falling);
                 } else {
                     // b = 0: certain for every y or for none.
                     let (rises, falls) = (a_rising > 0.0, a_falling > 0.0);
