@@ -1,22 +1,94 @@
-//! Evaluation does not touch the heap for degrees up to 16.
+//! Evaluation does not touch the heap for degrees up to 16; a surface of
+//! revolution holds heap in proportion to its profile, as it reports.
 //!
 //! A counting global allocator wraps the system allocator and counts
 //! allocations (including zeroed allocations and reallocations) per thread,
 //! so the test threads running in parallel do not see each other's
 //! allocations. Each check runs the operation between two readings of the
-//! current thread's counter.
+//! current thread's counter. The same allocator also keeps, per thread, the
+//! bytes currently held (requested sizes): what a built value holds is the
+//! change across its build ([`held_by`]).
 
 mod common;
 
 use common::{allocations_in, allocations_so_far};
 use revolve::nalgebra::{Point, SVector};
-use revolve::{BSpline, Bezier, Curve};
+use revolve::{BSpline, Bezier, Curve, Revolution};
+use std::alloc::{GlobalAlloc, Layout};
+use std::cell::Cell;
 use std::hint::black_box;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+/// [`common::CountingAllocator`] with a per-thread tally of the bytes held.
+struct CountingBytes;
+
+thread_local! {
+    // `const` initialisation and no destructor, as the allocation counter.
+    static HELD: Cell<isize> = const { Cell::new(0) };
+}
+
+/// Adds `bytes` to the calling thread's tally (`try_with`: during thread
+/// teardown the slot may be gone).
+fn hold(bytes: isize) {
+    let _ = HELD.try_with(|held| held.set(held.get() + bytes));
+}
+
+// SAFETY: every method forwards to `common::CountingAllocator` (which
+// forwards to `System`) with the caller's arguments unchanged; the tally
+// only reads sizes and touches a destructor-free thread-local.
+unsafe impl GlobalAlloc for CountingBytes {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: forwarded contract of `GlobalAlloc::alloc`.
+        let p = unsafe { common::CountingAllocator.alloc(layout) };
+        if !p.is_null() {
+            hold(layout.size() as isize);
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        // SAFETY: forwarded contract of `GlobalAlloc::alloc_zeroed`.
+        let p = unsafe { common::CountingAllocator.alloc_zeroed(layout) };
+        if !p.is_null() {
+            hold(layout.size() as isize);
+        }
+        p
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        // SAFETY: forwarded contract of `GlobalAlloc::realloc`; `ptr` came
+        // from this allocator.
+        let p = unsafe { common::CountingAllocator.realloc(ptr, layout, new_size) };
+        // On failure the old block stays allocated: nothing changes.
+        if !p.is_null() {
+            hold(new_size as isize - layout.size() as isize);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded contract of `GlobalAlloc::dealloc`.
+        unsafe { common::CountingAllocator.dealloc(ptr, layout) };
+        hold(-(layout.size() as isize));
+    }
+}
+
 #[global_allocator]
-static GLOBAL: common::CountingAllocator = common::CountingAllocator;
+static GLOBAL: CountingBytes = CountingBytes;
+
+/// `build`'s value and the heap bytes it holds: the calling thread's bytes
+/// held after the build minus before (temporaries freed during the build
+/// do not count).
+fn held_by<T>(build: impl FnOnce() -> T) -> (T, usize) {
+    let before = HELD.with(Cell::get);
+    let value = build();
+    let held = HELD.with(Cell::get) - before;
+    (
+        value,
+        usize::try_from(held).expect("a build does not free more than it allocates"),
+    )
+}
 
 /// `n` control points in `D` dimensions with distinct coordinates.
 fn points<const D: usize>(n: usize) -> Vec<Point<f64, D>> {
@@ -225,4 +297,37 @@ fn counts_are_per_thread() {
     worker.join().unwrap();
     assert!(churned.load(Ordering::Relaxed) >= 10_000);
     assert_eq!(during, 0, "after {spins} evaluations");
+}
+
+// ------------------------------------------------ surfaces' heap bytes ----
+
+/// Builds the surface of `profile` (itself built by `profile`) and checks
+/// what it holds: [`Revolution::heap_bytes`] agrees with the allocator's
+/// count of what the surface's construction kept (to a word per table:
+/// they should be equal), and the whole surface, profile included, holds
+/// at most `limit` bytes. Returns the surface's heap bytes.
+fn check_heap<C: Curve<2>>(what: &str, profile: impl FnOnce() -> C, limit: usize) -> usize {
+    let (profile, profile_bytes) = held_by(profile);
+    let (surface, surface_bytes) = held_by(|| Revolution::new(profile));
+    assert!(surface.has_exact_intersector(), "{what}");
+    let reported = surface.heap_bytes();
+    assert!(
+        reported.abs_diff(surface_bytes) <= 64,
+        "{what}: heap_bytes {reported}, the allocator counted {surface_bytes}"
+    );
+    assert!(
+        profile_bytes + surface_bytes <= limit,
+        "{what}: profile {profile_bytes} and surface {surface_bytes} bytes, limit {limit}"
+    );
+    reported
+}
+
+/// The one-cubic vase (cut into 8 spans) holds at most 4 KiB, the 25-point
+/// wine glass (22 spans) at most 16 KiB, profile included, and the glass
+/// more than the vase.
+#[test]
+fn surfaces_hold_heap_in_proportion_to_their_profiles() {
+    let vase = check_heap("vase", common::vase, 4 * 1024);
+    let glass = check_heap("wine glass", common::wine_glass, 16 * 1024);
+    assert!(vase < glass, "vase {vase}, glass {glass}");
 }

@@ -537,7 +537,10 @@ fn tessellating_spans_that_are_not_finite_is_an_error() {
     for knots in [(f64::NEG_INFINITY, f64::INFINITY), (f64::NAN, 1.0)] {
         let surface = Revolution::new(Spans { knots });
         assert!(
-            matches!(surface.contract_error(), Some(Error::SpansOutOfOrder { index: 0 })),
+            matches!(
+                surface.contract_error(),
+                Some(Error::SpansOutOfOrder { index: 0 })
+            ),
             "{knots:?}"
         );
         assert_eq!(

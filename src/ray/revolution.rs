@@ -43,12 +43,12 @@
 //! decided by [`quick_roots`] (no root, or one certain sign change and its
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
-use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves};
+use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves, product_weights};
 use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
 use super::turn_angle::turn_angle;
-use crate::bernstein::{Polynomial, binomial_row, eval_with_derivative};
+use crate::bernstein::{Polynomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{BezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
@@ -362,14 +362,7 @@ impl SpanTable {
                 r: (r0, r1),
             });
         }
-        let n = degree;
-        let (row, row2) = (binomial_row(n), binomial_row(2 * n));
-        let weights = (0..=n)
-            .flat_map(|i| {
-                let (row, row2) = (&row, &row2);
-                (0..=n).map(move |j| row[i] * row[j] / row2[i + j])
-            })
-            .collect();
+        let weights = product_weights(degree);
         let r_max = table.iter().fold(0.0_f64, |m, s| m.max(s.r.1));
         let y_range = table
             .iter()
@@ -385,6 +378,7 @@ impl SpanTable {
                 xs: &xs,
                 ys: &ys,
                 w: degree + 1,
+                weights: &weights,
             };
             let mut cells = MeridianCells::new(&boxes, scale);
             cells.certify_monotone(curves);
@@ -416,6 +410,20 @@ impl SpanTable {
             scale,
             unit,
         })
+    }
+
+    /// The bytes the table holds on the heap: its spans, groups and
+    /// coefficients, and the line-class cells.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        fn held<T>(v: &Vec<T>) -> usize {
+            v.capacity() * size_of::<T>()
+        }
+        held(&self.spans)
+            + held(&self.groups)
+            + held(&self.xs)
+            + held(&self.ys)
+            + held(&self.weights)
+            + self.cells.as_ref().map_or(0, MeridianCells::heap_bytes)
     }
 
     /// The first and last control points `(x, y)` of span `k`.
@@ -553,11 +561,11 @@ impl SpanTable {
         };
         match cell {
             Cell::Miss => return None,
-            Cell::Spans { listed, monotone } => {
+            Cell::Spans(words) => {
                 // The monotonic spans and the others in two passes, so that
                 // no branch asks which kind each span is.
                 let ends = (q.d.y != 0.0).then(|| EndValues::new(&q, self));
-                for (w, (&word, &steady)) in listed.iter().zip(monotone).enumerate() {
+                for (w, (word, steady)) in words.enumerate() {
                     let steady = match ends {
                         Some(ends) => {
                             let steady = word & steady;

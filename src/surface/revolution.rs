@@ -348,6 +348,17 @@ impl<C: Curve<2>> Revolution<C> {
         self.approximation
     }
 
+    /// The bytes this surface holds on the heap beyond its profile: the
+    /// exact intersector's tables (the spans with their ranges and Bézier
+    /// coefficients, the culling groups, and the line-class cells, whose
+    /// size is proportional to the number of spans). 0 without an exact
+    /// intersector. The profile curve is stored by value; its own heap
+    /// storage (control points, knots) is not counted, as [`Curve`] does
+    /// not report it.
+    pub fn heap_bytes(&self) -> usize {
+        self.exact.as_ref().map_or(0, SpanTable::heap_bytes)
+    }
+
     /// The intersection accuracy.
     pub fn tolerance(&self) -> &Tolerance {
         &self.tolerance
