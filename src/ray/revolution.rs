@@ -61,7 +61,12 @@ const MAX_CELL_SPANS: usize = 1024;
 /// Ray origins farther than this many times the object's scale from the
 /// axis origin are moved along their line first (see
 /// [`SpanTable::intersect`]).
-const REORIGIN: f64 = 4.0;
+const REORIGIN: f64 = 1e3;
+
+/// Ray directions whose largest component is in this range are used as
+/// they are; others are first brought to unit length (see
+/// [`SpanTable::intersect`]).
+const DIRECTION_RANGE: (f64, f64) = (1e-100, 1e100);
 
 /// Spans visited nearest first; more than this are visited after, in
 /// profile order.
@@ -445,18 +450,20 @@ impl SpanTable {
     /// frame (the profile's own units; `t` in units of `|d|`).
     ///
     /// The ray is first brought to the table's working frame, where every
-    /// step of the solver runs at a scale near 1 whatever the object's size
-    /// and the ray's:
-    /// - `d` becomes a unit vector (its length found without overflow), so
-    ///   that `|d|` anywhere in the floating-point range works;
+    /// step of the solver runs at a moderate scale whatever the object's
+    /// size and the ray's:
+    /// - a direction whose largest component is outside [`DIRECTION_RANGE`]
+    ///   becomes a unit vector (its length found without overflow), so that
+    ///   `|d|` anywhere in the floating-point range works;
     /// - an origin farther than [`REORIGIN`] times the object's scale from
     ///   the axis origin moves along the line to the line's point nearest
     ///   that origin (a line that passes farther than twice the object's
     ///   bounding ball is a miss), so that far origins neither overflow the
     ///   squares nor blur the culling;
-    /// - lengths are multiplied by the table's power of two
-    ///   (`unit`), which is exact.
+    /// - lengths are multiplied by the table's power of two (`unit`), which
+    ///   is exact.
     ///
+    /// `tol` is taken as valid ([`Tolerance::clamped`]).
     /// `t_min`/`t_max` that are NaN, or `t_min ≥ t_max`, give `None`.
     pub(crate) fn intersect(
         &self,
@@ -476,16 +483,28 @@ impl SpanTable {
         if !(m > 0.0 && m.is_finite()) {
             return None;
         }
-        let dm = d / m;
-        let dm_norm = dm.norm();
-        let (du, dn) = (dm / dm_norm, m * dm_norm);
+        // A direction of moderate length is used as it is (`dn = 1`); any
+        // other is brought to unit length (found without overflow), `t`
+        // then being measured in units of `dn = |d|`.
+        let (d, dn) = if (DIRECTION_RANGE.0..=DIRECTION_RANGE.1).contains(&m) {
+            (d, 1.0)
+        } else {
+            let dm = d / m;
+            let norm = dm.norm();
+            (dm / norm, m * norm)
+        };
         if !dn.is_finite() {
             return None;
         }
-        // Distances along the ray: t·|d| before the move, minus `shift` after.
+        // Along the ray: t·dn before the move, minus `shift` after (in units
+        // of the working |d|).
         let far = o.coords.amax() * self.unit > REORIGIN * self.scale;
-        let shift = if far { -o.coords.dot(&du) } else { 0.0 };
-        let o = o.coords + du * shift;
+        let shift = if far {
+            -o.coords.dot(&d) / d.norm_squared()
+        } else {
+            0.0
+        };
+        let o = o.coords + d * shift;
         // The object lies in the ball of radius √2·scale about the origin.
         if far {
             let near_enough = o.norm() * self.unit <= 3.0 * self.scale;
@@ -495,7 +514,7 @@ impl SpanTable {
         }
         let to_working = |t: f64| (t * dn - shift) * self.unit;
         let (lo, hi) = (to_working(t_min), to_working(t_max));
-        let mut hit = self.intersect_working(o * self.unit, du, lo, hi, &tol.clamped(), report)?;
+        let mut hit = self.intersect_working(o * self.unit, d, lo, hi, tol, report)?;
         let back = 1.0 / self.unit;
         hit.t = (hit.t * back + shift) / dn;
         hit.point = Point3::from(hit.point.coords * back);
