@@ -464,6 +464,7 @@ impl SpanTable {
     ///   is exact.
     ///
     /// `tol` is taken as valid ([`Tolerance::clamped`]).
+    ///
     /// `t_min`/`t_max` that are NaN, or `t_min ≥ t_max`, give `None`.
     pub(crate) fn intersect(
         &self,
@@ -533,8 +534,8 @@ impl SpanTable {
         )
     }
 
-    /// [`intersect`](Self::intersect) in the working frame: `d` of unit
-    /// length, lengths multiplied by `unit`, `t_min < t_max`.
+    /// [`intersect`](Self::intersect) in the working frame: `d` as the front
+    /// end left it, lengths multiplied by `unit`, `t_min < t_max`.
     fn intersect_working(
         &self,
         o: Vector3<f64>,
