@@ -380,6 +380,11 @@ fn spans_out_of_order_are_an_error() {
     assert_empty(Spans { spans }, |e| {
         matches!(e, Error::SpansOutOfOrder { index: 0 })
     });
+    // An infinite start would make NaN parameters.
+    let spans = vec![span(f64::NEG_INFINITY, 1.0, &[(1.0, 1.0), (1.0, 2.0)])];
+    assert_empty(Spans { spans }, |e| {
+        matches!(e, Error::SpansOutOfOrder { index: 0 })
+    });
 }
 
 /// Spans of different degrees are raised to the highest: the exact

@@ -135,8 +135,9 @@ fn intersector_data<C: Curve<2>>(profile: &C) -> Result<(SpanTable, Option<f64>)
 }
 
 /// Checks what [`Curve::bezier_spans`] promises: at least one span, each
-/// on a finite non-empty interval that starts where the previous one ends
-/// or later, with finite control points within
+/// on a non-empty interval within [`MAX_COORDINATE`](crate::MAX_COORDINATE)
+/// that starts where the previous one ends or later, with finite control
+/// points within
 /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (and its rounding).
 fn check_spans(spans: &[BezierSpan<2>]) -> Result<(), Error> {
     if spans.is_empty() {
@@ -146,7 +147,8 @@ fn check_spans(spans: &[BezierSpan<2>]) -> Result<(), Error> {
     let mut end = f64::NEG_INFINITY;
     for (index, span) in spans.iter().enumerate() {
         let (a, b) = span.knots;
-        if !(a < b && a >= end && b.is_finite()) {
+        let knots_ok = a.abs() <= crate::MAX_COORDINATE && b.abs() <= crate::MAX_COORDINATE;
+        if !(a < b && a >= end && knots_ok) {
             return Err(Error::SpansOutOfOrder { index });
         }
         end = b;
