@@ -103,7 +103,6 @@ fn own_curve_sphere_hits_where_the_quadratic_says() {
             b.contains(&Point3::new(size, 0.0, 0.0)) && b.contains(&Point3::new(0.0, -size, 0.0))
         );
         assert!(b.max.x <= size * (1.0 + 1e-6), "bounds {b:?}");
-        let (mut hits, mut misses) = (0, 0);
         for _ in 0..2000 {
             let origin = Point3::from(rng.direction() * 5.0 * size);
             let target = in_ball(&mut rng, 0.95 * size);
@@ -125,15 +124,12 @@ fn own_curve_sphere_hits_where_the_quadratic_says() {
                 hit.point
             );
             assert!((s.eval(hit.uv.0, hit.uv.1) - hit.point).norm() <= 1e-9 * size);
-            hits += 1;
             // A line passing 1.05 radii from the centre.
             let dir = rng.direction();
             let side = dir.cross(&rng.direction()).normalize();
             let ray = Ray::new(Point3::from(side * 1.05 * size - dir * 4.0 * size), dir);
             assert!(s.intersect(&ray, 0.0, f64::INFINITY).is_none(), "false hit");
-            misses += 1;
         }
-        assert_eq!((hits, misses), (2000, 2000));
     }
 }
 

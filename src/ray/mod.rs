@@ -47,6 +47,34 @@ impl Ray {
     }
 }
 
+/// A direction split into its unit vector and its length, the length as two
+/// factors `|d| = largest · norm_of_scaled` (`largest` the largest absolute
+/// component, `norm_of_scaled = |d / largest|` in `[1, √3]`), so that no
+/// direction of finite components overflows or underflows on the way.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SplitDirection {
+    pub(crate) unit: Vector3<f64>,
+    pub(crate) largest: f64,
+    pub(crate) norm_of_scaled: f64,
+}
+
+impl SplitDirection {
+    /// `None` for a zero, NaN or infinite direction.
+    pub(crate) fn new(d: &Vector3<f64>) -> Option<Self> {
+        let largest = d.amax();
+        if !(largest > 0.0 && largest.is_finite()) {
+            return None;
+        }
+        let scaled = d / largest;
+        let norm_of_scaled = scaled.norm();
+        Some(SplitDirection {
+            unit: scaled / norm_of_scaled,
+            largest,
+            norm_of_scaled,
+        })
+    }
+}
+
 /// A ray–surface intersection.
 ///
 /// - `t`: the ray parameter, in units of `|dir|`.

@@ -126,6 +126,7 @@
 //! # Ok::<(), revolve::Error>(())
 //! ```
 
+use super::SplitDirection;
 use crate::surface::BoundedSurface;
 use crate::{Aabb, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{Matrix3, Unit};
@@ -700,21 +701,14 @@ impl UnitRay {
     /// `None` for a NaN or infinite origin, or a direction that is zero or
     /// not finite.
     fn new(ray: &Ray) -> Option<Self> {
-        let largest = ray.dir.amax();
-        let finite = ray
-            .origin
-            .iter()
-            .chain(ray.dir.iter())
-            .all(|c| c.is_finite());
-        if !(finite && largest > 0.0) {
+        if !ray.origin.iter().all(|c| c.is_finite()) {
             return None;
         }
-        let scaled = ray.dir / largest;
-        let norm_of_scaled = scaled.norm();
+        let split = SplitDirection::new(&ray.dir)?;
         Some(UnitRay {
-            ray: Ray::new(ray.origin, scaled / norm_of_scaled),
-            largest,
-            norm_of_scaled,
+            ray: Ray::new(ray.origin, split.unit),
+            largest: split.largest,
+            norm_of_scaled: split.norm_of_scaled,
         })
     }
 

@@ -13,6 +13,7 @@ use nalgebra::{Point3, Vector3};
 /// hit `(u, t) = start`. The hit is kept if the residual on the profile is
 /// within the exact intersector's acceptance, `max(tolerance, 1e-12) ×` the
 /// object's `scale` (and the origin's distance), and `u` stays in the domain.
+/// `tol` is taken as valid ([`Tolerance::clamped`], as the surface stores it).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn refine_on_profile<C: Curve<2>>(
     profile: &C,
@@ -24,7 +25,6 @@ pub(crate) fn refine_on_profile<C: Curve<2>>(
     tol: &Tolerance,
     iterations: &mut u32,
 ) -> Option<LocalHit> {
-    let tol = tol.clamped();
     let target = tol.relative * scale;
     let accept = target.max(ACCEPT * scale.max(o.amax()));
     let eval = |u: f64| {

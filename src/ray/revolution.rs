@@ -43,6 +43,7 @@
 //! decided by [`quick_roots`] (no root, or one certain sign change and its
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
+use super::SplitDirection;
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves, product_weights};
 use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
@@ -490,9 +491,8 @@ impl SpanTable {
         let (d, dn) = if (DIRECTION_RANGE.0..=DIRECTION_RANGE.1).contains(&m) {
             (d, 1.0)
         } else {
-            let dm = d / m;
-            let norm = dm.norm();
-            (dm / norm, m * norm)
+            let split = SplitDirection::new(&d)?;
+            (split.unit, split.largest * split.norm_of_scaled)
         };
         if !dn.is_finite() {
             return None;
