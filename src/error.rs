@@ -196,11 +196,50 @@ pub enum Error {
         /// The order of the derivative (`1 ..= degree`).
         order: usize,
     },
+    /// A rational curve needs one weight per control point.
+    WeightCount {
+        /// The number of control points.
+        expected: usize,
+        /// The number of weights given.
+        found: usize,
+    },
+    /// A weight is zero, negative, NaN or infinite (weights must be
+    /// positive and finite).
+    InvalidWeight {
+        /// Index of the weight.
+        index: usize,
+        /// The offending weight.
+        weight: f64,
+    },
+    /// The largest weight is more than
+    /// [`MAX_WEIGHT_RATIO`](crate::curve::MAX_WEIGHT_RATIO) times the
+    /// smallest.
+    WeightRatioTooLarge {
+        /// Largest over smallest weight.
+        ratio: f64,
+        /// The limit.
+        max: f64,
+    },
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
+            Error::WeightCount { expected, found } => write!(
+                f,
+                "wrong weight count: expected {expected} (one per control point), found {found}"
+            ),
+            Error::InvalidWeight { index, weight } => write!(
+                f,
+                "weight {index} is {}; weights must be positive and finite",
+                Num(weight)
+            ),
+            Error::WeightRatioTooLarge { ratio, max } => write!(
+                f,
+                "the largest weight is {} times the smallest, more than the supported {}",
+                Num(ratio),
+                Num(max)
+            ),
             Error::NoControlPoints => {
                 write!(f, "a curve needs at least one control point, got none")
             }

@@ -23,12 +23,19 @@
 mod bezier;
 mod bspline;
 mod flatten;
+mod homogeneous;
 mod pieces;
+mod rational_bezier;
 
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
+#[allow(unused_imports)] // for Nurbs (issue 17, in progress)
+pub(crate) use homogeneous::{Homogeneous, quotient_rule};
+#[allow(unused_imports)] // for Nurbs (issue 17, in progress)
+pub(crate) use rational_bezier::validate_weights;
+pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 
 use crate::Error;
 use nalgebra::{Point, SVector, Unit};
@@ -132,6 +139,18 @@ pub trait Curve<const D: usize> {
     /// from control points. [`Bezier`] and [`BSpline`] provide it.
     fn bezier_spans(&self) -> Option<Vec<BezierSpan<D>>> {
         None
+    }
+
+    /// The curve as a sequence of rational Bézier pieces in parameter order,
+    /// if it is piecewise rational; `None` otherwise. The default gives the
+    /// [polynomial spans](Curve::bezier_spans) with unit weights.
+    ///
+    /// A [`Revolution`](crate::Revolution) whose profile has rational spans
+    /// (a [`Nurbs`](crate::Nurbs) profile: exact spheres, tori, lathed
+    /// parts) gets the exact ray intersector.
+    fn rational_bezier_spans(&self) -> Option<Vec<RationalBezierSpan<D>>> {
+        self.bezier_spans()
+            .map(|spans| spans.into_iter().map(RationalBezierSpan::from).collect())
     }
 
     /// `segments + 1` samples at uniformly spaced parameters
