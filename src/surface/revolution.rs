@@ -40,11 +40,16 @@ use std::f64::consts::TAU;
 /// A revolution can be placed anywhere with [`with_axis`](Self::with_axis).
 ///
 /// # Which profiles, and what ray intersection guarantees
-/// - **Profiles with [Bézier spans](Curve::bezier_spans)** ([`Bezier`],
-///   [`BSpline`], or your own type that provides them; spans of different
-///   degrees are raised to the highest): the exact intersector. Certified:
-///   every transversal hit is found, no false hit is reported, the nearest in
-///   `(t_min, t_max)` to the [`Tolerance`].
+/// - **Profiles with [Bézier spans](Curve::bezier_spans) or
+///   [rational Bézier spans](Curve::rational_bezier_spans)** ([`Bezier`],
+///   [`BSpline`], [`RationalBezier`], [`Nurbs`], or your own type that
+///   provides them; spans of different degrees are raised to the highest):
+///   the exact intersector. Certified: every transversal hit is found, no
+///   false hit is reported, the nearest in `(t_min, t_max)` to the
+///   [`Tolerance`]. A rational profile makes exact spheres (a half circle
+///   about the axis), tori (an off-axis circle) and lathed parts; its hit
+///   condition is multiplied by `W²` and stays one polynomial of degree `2n`
+///   per span.
 /// - **Any other [`Curve<2>`]** (your own type with the three required
 ///   methods): at construction the profile is replaced by its piecewise
 ///   cubic Hermite approximation (points and derivatives matched at the
@@ -70,6 +75,8 @@ use std::f64::consts::TAU;
 ///
 /// [`Bezier`]: crate::Bezier
 /// [`BSpline`]: crate::BSpline
+/// [`RationalBezier`]: crate::RationalBezier
+/// [`Nurbs`]: crate::Nurbs
 #[derive(Debug, Clone, PartialEq)]
 pub struct Revolution<C> {
     profile: C,
