@@ -8,6 +8,7 @@
 //! | [`Bezier<D>`] | `points` |
 //! | [`BSpline<D>`] | `degree`, `knots`, `points` |
 //! | [`RationalBezier<D>`] | `points`, `weights` |
+//! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
 //! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
 //! | [`Tolerance`] | `relative`, `max_iterations` |
 //! | [`Ray`] | `origin`, `dir` |
@@ -16,7 +17,7 @@
 //! Points and vectors are sequences of their coordinates (nalgebra's own
 //! serde form). Reading goes through the public constructor
 //! ([`Bezier::new`], [`BSpline::new`], [`RationalBezier::new`],
-//! [`Tolerance::new`], [`Revolution::try_new`] then
+//! [`Nurbs::new`], [`Tolerance::new`], [`Revolution::try_new`] then
 //! [`Revolution::try_with_axis`]), so a deserialized value is exactly as
 //! valid as a constructed one, and bad data (a NaN coordinate, a wrong knot
 //! count, a weight that is not positive, a tolerance out of range, a zero
@@ -37,7 +38,7 @@ use nalgebra::{Point, Point3, Unit, Vector3};
 use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::{Aabb, BSpline, Bezier, Curve, RationalBezier, Ray, Revolution, Tolerance};
+use crate::{Aabb, BSpline, Bezier, Curve, Nurbs, RationalBezier, Ray, Revolution, Tolerance};
 
 /// A crate error as the deserializer's error, with the crate's message.
 fn invalid<E: serde::de::Error>(e: crate::Error) -> E {
@@ -121,6 +122,41 @@ impl<'de, const D: usize> Deserialize<'de> for RationalBezier<D> {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
         let data = RationalBezierData::<D>::deserialize(deserializer)?;
         RationalBezier::new(data.points.into_owned(), data.weights.into_owned()).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`Nurbs`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Nurbs", deny_unknown_fields)]
+struct NurbsData<'a, const D: usize> {
+    degree: usize,
+    knots: Cow<'a, [f64]>,
+    points: Cow<'a, [Point<f64, D>]>,
+    weights: Cow<'a, [f64]>,
+}
+
+impl<const D: usize> Serialize for Nurbs<D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        NurbsData {
+            degree: self.degree(),
+            knots: Cow::Borrowed(self.knots()),
+            points: Cow::Borrowed(self.points()),
+            weights: Cow::Borrowed(self.weights()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for Nurbs<D> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = NurbsData::<D>::deserialize(deserializer)?;
+        Nurbs::new(
+            data.degree,
+            data.knots.into_owned(),
+            data.points.into_owned(),
+            data.weights.into_owned(),
+        )
+        .map_err(invalid)
     }
 }
 

@@ -61,8 +61,10 @@ impl Control {
 }
 
 /// A curve block as written.
-struct CurveBlock<'a> {
-    keyword: Token<'a>,
+struct CurveBlock {
+    /// The curve's keyword (one of [`CURVES`]) and where it is.
+    name: &'static str,
+    at: Pos,
     controls: Vec<Control>,
     /// A `NurbsCurve`'s degree.
     degree: usize,
@@ -72,9 +74,13 @@ struct CurveBlock<'a> {
     knots_at: Pos,
 }
 
-/// Reads the curve block after its keyword `keyword`.
-fn curve_block<'a>(c: &mut Cursor<'a>, keyword: Token<'a>) -> Result<CurveBlock<'a>> {
-    let name = keyword.text;
+/// Reads the curve block after its keyword `keyword` (one of [`CURVES`]).
+fn curve_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<CurveBlock> {
+    let name = CURVES
+        .iter()
+        .copied()
+        .find(|&n| n == keyword.text)
+        .unwrap_or("curve");
     let nurbs = name == "NurbsCurve";
     let keys: &[&str] = if nurbs {
         &["degree", "knots", "controls"]
@@ -106,7 +112,8 @@ fn curve_block<'a>(c: &mut Cursor<'a>, keyword: Token<'a>) -> Result<CurveBlock<
         (0, (Vec::new(), keyword.pos))
     };
     Ok(CurveBlock {
-        keyword,
+        name,
+        at: keyword.pos,
         controls: c.required(controls, "controls", name)?,
         degree,
         knots,
@@ -145,7 +152,7 @@ fn numbers(c: &mut Cursor<'_>, what: &str) -> Result<Vec<(f64, Pos)>> {
     Ok(values)
 }
 
-impl CurveBlock<'_> {
+impl CurveBlock {
     fn points(&self) -> Vec<Point3<f64>> {
         self.controls.iter().map(|p| p.point).collect()
     }
@@ -197,15 +204,12 @@ impl CurveBlock<'_> {
             Error::KnotCount { .. } | Error::KnotMultiplicity { .. } => Some(self.knots_at),
             _ => None,
         };
-        at.unwrap_or(self.keyword.pos)
+        at.unwrap_or(self.at)
     }
 
     /// revolve's error `e` for this curve, located by [`Self::locate`].
     fn invalid(&self, c: &Cursor<'_>, e: Error) -> super::ParseError {
-        c.error(
-            self.locate(&e),
-            format!("invalid {}: {e}", self.keyword.text),
-        )
+        c.error(self.locate(&e), format!("invalid {}: {e}", self.name))
     }
 }
 
@@ -229,9 +233,7 @@ fn profile(c: &mut Cursor<'_>) -> Result<RevolutionBody> {
     let keyword = match c.peek() {
         Some(t) if CURVES.contains(&t.text) => t,
         _ => {
-            return Err(c.expected(
-                "BezierCurve, BsplineCurve or NurbsCurve after 'profile'",
-            ));
+            return Err(c.expected("BezierCurve, BsplineCurve or NurbsCurve after 'profile'"));
         }
     };
     c.bump();
@@ -239,7 +241,9 @@ fn profile(c: &mut Cursor<'_>) -> Result<RevolutionBody> {
     let points = block.plane_points(c)?;
     let fail = |e| block.invalid(c, e);
     Ok(match keyword.text {
-        "BezierCurve" => RevolutionBody::Bezier(Revolution::new(Bezier::new(points).map_err(fail)?)),
+        "BezierCurve" => {
+            RevolutionBody::Bezier(Revolution::new(Bezier::new(points).map_err(fail)?))
+        }
         "BsplineCurve" => {
             RevolutionBody::BSpline(Revolution::new(BSpline::uniform(3, points).map_err(fail)?))
         }
@@ -279,8 +283,8 @@ pub(super) fn tube(c: &mut Cursor<'_>, curve: Token<'_>) -> Result<Shape> {
             spline.flatten(tolerance)
         }
         _ => {
-            let nurbs = Nurbs::new(block.degree, block.knots(), points, block.weights())
-                .map_err(fail)?;
+            let nurbs =
+                Nurbs::new(block.degree, block.knots(), points, block.weights()).map_err(fail)?;
             check_extent(c, curve, extent)?;
             nurbs.flatten(tolerance)
         }
