@@ -16,12 +16,13 @@ mod common;
 use common::{GLASS, Rng, VASE, points};
 use revolve::nalgebra::{Point2, Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BSpline, Bezier, Curve, Error, Intersect, RationalBezier, Ray, Revolution, Tolerance,
+    Aabb, BSpline, Bezier, Curve, Error, Intersect, Nurbs, RationalBezier, Ray, Revolution,
+    Tolerance,
 };
 use serde::de::value::{Error as TreeError, MapDeserializer, SeqDeserializer};
 use serde::de::{DeserializeOwned, IntoDeserializer, Visitor};
 use serde::{Deserializer, Serialize, forward_to_deserialize_any};
-use std::f64::consts::FRAC_1_SQRT_2;
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 use std::fmt::Debug;
 
 // ---------------------------------------------------------------------------
@@ -220,14 +221,18 @@ fn curves_round_trip_equal_and_evaluate_alike() {
         for i in n + 1..knots.len() {
             knots[i] = knots[i].max(knots[i - 1]);
         }
-        let spline = BSpline::new(degree, knots, pts3.clone()).unwrap();
+        let spline = BSpline::new(degree, knots.clone(), pts3.clone()).unwrap();
         assert_curve_round_trip(&spline);
         assert_curve_round_trip(&Bezier::new(pts3.clone()).unwrap());
-        let weights = (0..n).map(|_| rng.range(0.05, 20.0)).collect();
+        let weights: Vec<f64> = (0..n).map(|_| rng.range(0.05, 20.0)).collect();
+        let nurbs = Nurbs::new(degree, knots, pts3.clone(), weights.clone()).unwrap();
+        assert_curve_round_trip(&nurbs);
         assert_curve_round_trip(&RationalBezier::new(pts3, weights).unwrap());
     }
     assert_curve_round_trip(&quarter_circle());
     assert_curve_round_trip(&half_circle());
+    assert_curve_round_trip(&Nurbs::circle(Point2::new(0.3, -7.0), 2.5).unwrap());
+    assert_curve_round_trip(&Nurbs::arc(Point2::new(1.0, 2.0), 0.1, -1.0, 4.0).unwrap());
 }
 
 #[test]
@@ -322,6 +327,14 @@ fn revolutions_round_trip_and_intersect_alike() {
         assert_surface_round_trip(&glass, 20 + seed);
         let sphere = Revolution::new(half_circle()).with_axis(origin, axis);
         assert_surface_round_trip(&sphere, 30 + seed);
+        // A NURBS sphere (an arc from pole to pole) and a torus (a full
+        // circle off the axis).
+        let arc = Nurbs::arc(Point2::origin(), 1.5, -FRAC_PI_2, FRAC_PI_2).unwrap();
+        let sphere = Revolution::new(arc).with_axis(origin, axis);
+        assert_surface_round_trip(&sphere, 40 + seed);
+        let circle = Nurbs::circle(Point2::new(2.0, 0.5), 0.75).unwrap();
+        let torus = Revolution::new(circle).with_axis(origin, axis);
+        assert_surface_round_trip(&torus, 50 + seed);
     }
 }
 
@@ -355,6 +368,16 @@ fn bspline_tree(degree: u64, knots: &[f64], points: &[(f64, f64)]) -> Tree {
 /// The tree of a rational Bézier.
 fn rational_tree(points: &[(f64, f64)], weights: &[f64]) -> Tree {
     Tree::Map(vec![("points", pts(points)), ("weights", nums(weights))])
+}
+
+/// The tree of a NURBS curve.
+fn nurbs_tree(degree: u64, knots: &[f64], points: &[(f64, f64)], weights: &[f64]) -> Tree {
+    Tree::Map(vec![
+        ("degree", Tree::Whole(degree)),
+        ("knots", nums(knots)),
+        ("points", pts(points)),
+        ("weights", nums(weights)),
+    ])
 }
 
 /// The tree of a tolerance.
@@ -452,6 +475,52 @@ fn bad_weights_are_refused_with_the_crate_message() {
     let ratio = RationalBezier::new(points(&three), vec![1.0, 1e9, 1.0]).unwrap_err();
     assert!(matches!(ratio, Error::WeightRatioTooLarge { .. }));
     assert_refused::<RationalBezier<2>>(rational_tree(&three, &[1.0, 1e9, 1.0]), ratio);
+}
+
+#[test]
+fn bad_nurbs_are_refused_with_the_crate_message() {
+    let three = [(0.0, 0.0), (1.0, 1.0), (2.0, 0.0)];
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    let w = [1.0, 0.5, 1.0];
+    let cases: Vec<(&[f64], &[(f64, f64)], &[f64])> = vec![
+        (&knots[..5], &three, &w),                                // a knot short
+        (&[0.0, 0.0, 0.0, 1.0, f64::NAN, 1.0], &three, &w),       // a knot not finite
+        (&[0.0, 0.0, 0.5, 0.25, 1.0, 1.0], &three, &w),           // decreasing
+        (&knots, &[(0.0, 0.0), (1.0, f64::NAN), (2.0, 0.0)], &w), // a point not finite
+        (&knots, &three, &w[..2]),                                // a weight short
+        (&knots, &three, &[1.0, 0.0, 1.0]),                       // weights not positive,
+        (&knots, &three, &[1.0, -2.0, 1.0]),                      //   not finite
+        (&knots, &three, &[1.0, f64::NAN, 1.0]),
+        (&knots, &three, &[1.0, f64::INFINITY, 1.0]),
+        (&knots, &three, &[1.0, 1e-9, 1.0]), // ratio beyond the limit
+    ];
+    for (knots, points_, weights) in cases {
+        let expected = Nurbs::new(2, knots.to_vec(), points(points_), weights.to_vec())
+            .expect_err("a bad curve");
+        let message = read::<Nurbs<2>>(nurbs_tree(2, knots, points_, weights)).unwrap_err();
+        assert_eq!(message, expected.to_string());
+    }
+    assert_refused::<Nurbs<2>>(
+        nurbs_tree(2, &knots, &three, &[1.0, 1.0]),
+        Error::WeightCount {
+            expected: 3,
+            found: 2,
+        },
+    );
+    assert_refused::<Nurbs<2>>(
+        nurbs_tree(2, &knots[..5], &three, &w),
+        Error::KnotCount {
+            expected: 6,
+            found: 5,
+        },
+    );
+    assert_refused::<Nurbs<2>>(
+        nurbs_tree(2, &knots, &three, &[1.0, 0.0, 1.0]),
+        Error::InvalidWeight {
+            index: 1,
+            weight: 0.0,
+        },
+    );
 }
 
 #[test]

@@ -342,3 +342,27 @@ fn only_a_nurbs_control_point_has_a_weight() {
         "unknown keyword 'degree' in BezierCurve",
     );
 }
+
+#[test]
+fn the_documented_example_is_a_half_circle() {
+    // The first `NurbsCurve { … }` in a code block of the format's page.
+    let page = include_str!("../../../../docs/scene-format.md");
+    let start = page
+        .find("```text\nNurbsCurve {")
+        .expect("the page has a NurbsCurve example")
+        + "```text\n".len();
+    let end = start + page[start..].find("```").expect("the code block ends");
+    let profile = profile_of(&page[start..end]);
+    assert_eq!(profile.degree(), 2);
+    assert_eq!(
+        profile.weights(),
+        &[1.0, FRAC_1_SQRT_2, 1.0, FRAC_1_SQRT_2, 1.0]
+    );
+    let (a, b) = profile.domain();
+    assert_eq!(profile.eval(a), Point2::new(0.0, -1.0));
+    assert_eq!(profile.eval(b), Point2::new(0.0, 1.0));
+    for k in 0..=64 {
+        let p = profile.eval(a + (b - a) * f64::from(k) / 64.0);
+        assert!((p.coords.norm() - 1.0).abs() < 1e-15 && p.x >= 0.0, "{p}");
+    }
+}
