@@ -31,6 +31,26 @@
 //! values [`Tolerance::new`] refuses be read back. [`Ray`] and [`Aabb`] have
 //! public fields and no checks, so any values round-trip (as far as the
 //! format can carry them: JSON has no NaN or infinity).
+//!
+//! ```
+//! use revolve::nalgebra::Point2;
+//! use revolve::{Error, Nurbs, Revolution};
+//! use std::f64::consts::FRAC_PI_2;
+//!
+//! // A sphere: the half circle from the south pole to the north pole, turned.
+//! let arc = Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2)?;
+//! let sphere = Revolution::new(arc);
+//! let json = serde_json::to_string(&sphere).unwrap();
+//! let back: Revolution<Nurbs<2>> = serde_json::from_str(&json).unwrap();
+//! assert_eq!(back, sphere);
+//!
+//! // Bad data is refused with the constructor's message.
+//! let bad = r#"{"degree": 1, "knots": [0, 0, 1, 1], "points": [[0, 0], [1, 1]], "weights": [1, -2]}"#;
+//! let e = serde_json::from_str::<Nurbs<2>>(bad).unwrap_err();
+//! let expected = Error::InvalidWeight { index: 1, weight: -2.0 };
+//! assert!(e.to_string().starts_with(&expected.to_string()));
+//! # Ok::<(), Error>(())
+//! ```
 
 use std::borrow::Cow;
 

@@ -477,12 +477,15 @@ fn bad_weights_are_refused_with_the_crate_message() {
     assert_refused::<RationalBezier<2>>(rational_tree(&three, &[1.0, 1e9, 1.0]), ratio);
 }
 
+/// Knots, points and weights of a NURBS curve.
+type NurbsCase<'a> = (&'a [f64], &'a [(f64, f64)], &'a [f64]);
+
 #[test]
 fn bad_nurbs_are_refused_with_the_crate_message() {
     let three = [(0.0, 0.0), (1.0, 1.0), (2.0, 0.0)];
     let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
     let w = [1.0, 0.5, 1.0];
-    let cases: Vec<(&[f64], &[(f64, f64)], &[f64])> = vec![
+    let cases: Vec<NurbsCase<'_>> = vec![
         (&knots[..5], &three, &w),                                // a knot short
         (&[0.0, 0.0, 0.0, 1.0, f64::NAN, 1.0], &three, &w),       // a knot not finite
         (&[0.0, 0.0, 0.5, 0.25, 1.0, 1.0], &three, &w),           // decreasing
