@@ -206,7 +206,7 @@ const SPLICES: &[(&str, Option<&str>)] = &[
         Some("Group"),
     ),
     (
-        "RevSurface { profile NurbsCurve { degree 2 knots 0 0 0 1 1 1 controls [ 1e-300 0 0 ] [ 1 1e-300 0 1e-8 ] [ 1e-300 2 0 ] } }",
+        "RevSurface { profile NurbsCurve { degree 2 knots 0 0 0 1 1 1 controls [ 1e-300 0 0 ] [ 1 1e-300 0 1e4 ] [ 1e-300 2 0 ] } }",
         Some("Group"),
     ),
     (
