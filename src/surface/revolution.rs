@@ -97,6 +97,13 @@ pub struct Revolution<C> {
     /// Why the profile breaks the [`Curve`] contract, if it does.
     broken: Option<Error>,
     tolerance: Tolerance,
+    /// The axis of the last successful placement as [`placement`] scales it
+    /// before normalizing (largest component ±1; `y` before any placement):
+    /// the placement's defining data, which serialization writes so that a
+    /// round trip rebuilds `to_world` bit for bit (the axis read back from
+    /// the rotation, or the unit axis normalized again, may differ by an
+    /// ulp; this one scales by exactly 1 again).
+    scaled_axis: Vector3<f64>,
 }
 
 /// How many hits of a profile's approximation are tried, nearest first,
@@ -202,6 +209,7 @@ impl<C: Curve<2>> Revolution<C> {
             approximation,
             broken,
             tolerance: Tolerance::default(),
+            scaled_axis: Vector3::y(),
         }
     }
 
@@ -390,7 +398,7 @@ impl<C: Curve<2>> Revolution<C> {
     /// [`try_with_axis`](Self::try_with_axis) returns the error instead.
     pub fn with_axis(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
         match placement(origin, axis) {
-            Ok(axis) => self.place(origin, axis),
+            Ok(unit) => self.place(origin, unit, axis),
             Err(e) => {
                 self.exact = None;
                 self.broken = Some(e);
@@ -410,12 +418,18 @@ impl<C: Curve<2>> Revolution<C> {
         origin: Point3<f64>,
         axis: Unit<Vector3<f64>>,
     ) -> Result<Self, Error> {
-        let axis = placement(origin, axis)?;
-        Ok(self.place(origin, axis))
+        let unit = placement(origin, axis)?;
+        Ok(self.place(origin, unit, axis))
     }
 
-    /// Places the surface (`origin` and `axis` checked by [`placement`]).
-    fn place(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
+    /// Places the surface (`origin` and `given` checked by [`placement`],
+    /// which made the unit `axis` of `given`).
+    fn place(
+        mut self,
+        origin: Point3<f64>,
+        axis: Unit<Vector3<f64>>,
+        given: Unit<Vector3<f64>>,
+    ) -> Self {
         // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
         // of the dot product loses half the digits there).
         let y = Vector3::y();
@@ -433,7 +447,16 @@ impl<C: Curve<2>> Revolution<C> {
             UnitQuaternion::from_rotation_matrix(&rotation),
         );
         self.rotation = self.to_world.rotation.to_rotation_matrix();
+        self.scaled_axis = given.into_inner() / given.amax();
         self
+    }
+
+    /// The axis of the last placement, scaled to largest component ±1 (`y`
+    /// if never placed): placing a surface along it rebuilds the same
+    /// rotation bit for bit.
+    #[cfg(feature = "serde")]
+    pub(crate) fn scaled_axis(&self) -> &Vector3<f64> {
+        &self.scaled_axis
     }
 
     /// The profile curve.
