@@ -520,9 +520,10 @@ impl Nurbs<2> {
     /// `[0, 1]`.
     ///
     /// The sweep `end − start` must lie in `(0, 2π]`; a sweep of `2π` is the
-    /// full circle starting (and ending) at `start`, and a sweep beyond `2π`
-    /// by no more than the rounding of the angles (`2ε·max(|start|, |end|)`)
-    /// counts as `2π`. The arc is split into `m = ⌈sweep/(π/2)⌉` equal pieces,
+    /// full circle starting (and ending, exactly) at `start`, and a sweep
+    /// within the rounding of the angles (`2ε·max(|start|, |end|)`) of `2π`,
+    /// below or above, counts as `2π` (so `arc(c, r, a, a + TAU)` is a full
+    /// turn for any `a`). The arc is split into `m = ⌈sweep/(π/2)⌉` equal pieces,
     /// each a rational quadratic Bézier (Piegl & Tiller §7.5) with end points
     /// `center + radius·uᵢ` on the circle (`uᵢ = (cos θᵢ, sin θᵢ)`), middle
     /// point on the bisector at distance `radius/cos(φ/2)` from the center and
@@ -559,8 +560,8 @@ impl Nurbs<2> {
         if !(start.is_finite() && end.is_finite() && sweep > 0.0 && sweep <= TAU + slack) {
             return Err(Error::InvalidSweep { start, end });
         }
-        let full = sweep >= TAU;
-        let sweep = sweep.min(TAU);
+        let full = sweep >= TAU - slack;
+        let sweep = if full { TAU } else { sweep };
         let m = ((sweep / FRAC_PI_2).ceil() as usize).clamp(1, 4);
         let step = sweep / m as f64;
         let direction = |angle: f64| Vector2::new(angle.cos(), angle.sin());
