@@ -784,7 +784,7 @@ impl<const D: usize> Div<f64> for Homogeneous<D> {
 
 /// The power of two by which the weights are divided: the largest weight
 /// becomes a number in `[1, 2)`, the others are scaled exactly.
-fn weight_scale(weights: &[f64]) -> f64 {
+pub(crate) fn weight_scale(weights: &[f64]) -> f64 {
     power_of_two_near(weights.iter().fold(0.0_f64, |m, &w| m.max(w)))
 }
 
