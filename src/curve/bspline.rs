@@ -604,12 +604,30 @@ fn blossom<const D: usize>(
         for (dst, pt) in s.iter_mut().zip(&points[span - p..=span]) {
             *dst = pt.coords;
         }
-        for level in 1..=p {
-            let u = if level <= count_a { a } else { b };
-            de_boor_level(knots, p, span, s, u, level);
-        }
-        s[p]
+        blossom_in_place(knots, p, span, s, count_a, a, b)
     })
+}
+
+/// The blossom `f(a, …, a, b, …, b)` (`count_a` copies of `a`, the rest `b`)
+/// of the degree-`p` polynomial on knot span `span`, whose `p + 1` control
+/// coefficients (global indices `span − p … span`) are in `s`: de Boor's
+/// algorithm with argument `a` at the first `count_a` levels and `b` after.
+/// Overwrites `s`; generic over the coefficients (points, homogeneous
+/// points).
+pub(crate) fn blossom_in_place<T: crate::bernstein::Coefficient>(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    s: &mut [T],
+    count_a: usize,
+    a: f64,
+    b: f64,
+) -> T {
+    for level in 1..=p {
+        let u = if level <= count_a { a } else { b };
+        de_boor_level(knots, p, span, s, u, level);
+    }
+    s[p]
 }
 
 /// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on
