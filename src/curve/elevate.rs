@@ -18,13 +18,23 @@
 //! A B-spline of degree `p` whose interior knot `u` has multiplicity `m` is
 //! `C^{p−m}` there. Elevated to degree `q = p + k` it is the same curve, still
 //! `C^{p−m} = C^{q−(m+k)}`: it lies in the spline space of degree `q` whose
-//! knots are the old ones with every distinct knot of the domain `[a, b]`
-//! repeated `k` more times. Knots outside the domain (the course
-//! framework's uniform knots have `p` below `a` and `p` above `b`) are kept
-//! as they are: raising them too would move `t_q` and `t_n` and so change
-//! the domain. Control points whose basis function vanishes on the whole
-//! domain (only when `a` or `b` repeats beyond position `p` or `n`) do not
-//! shape the curve and are copied from the old ones.
+//! interior knots are the old ones, each repeated `k` more times.
+//!
+//! The ends of the domain `[a, b] = [t_p, t_n]` get multiplicity `q + 1`
+//! (clamped ends; knots beyond the domain are dropped). For a clamped
+//! spline, the usual case (and every NURBS conic), that is again "every
+//! knot `k` more times". For the course framework's uniform knots, whose
+//! knots beyond the domain shape only the control polygon, raising those
+//! knots too would move `t_q` and `t_n` and change the domain, and keeping
+//! them makes the end control points extrapolations that can leave the
+//! control points' hull (and, for rational splines, make weights
+//! negative). Clamped ends avoid both: the result is the old spline with
+//! `a` and `b` inserted to full multiplicity (Boehm's insertion, a corner
+//! cutting) and then elevated as a clamped spline, whose new control points
+//! are convex combinations of the old (degree elevation is a corner
+//! cutting too; Prautzsch & Piper, *A fast algorithm to raise the degree of
+//! spline curves*, CAGD 8, 1991). So the new points stay in the old points'
+//! box and new weights are positive.
 //!
 //! Piegl and Tiller's algorithm A5.9 (*The NURBS Book*, §5.5) computes the
 //! new control points by splitting into Bézier pieces, elevating each, and
@@ -46,11 +56,8 @@
 //! removal accumulates it). Arguments outside the chosen span extrapolate;
 //! of the admissible spans the one with the smallest growth factor
 //! `Π (|1 − u| + |u|)` over the local arguments `u` is used (1 when every
-//! argument is in the span: clamped ends, interior knots of multiplicity
-//! `≥ p`). The exact new control points are convex combinations of the
-//! old ones (degree elevation is a corner cutting; Prautzsch & Piper, *A
-//! fast algorithm to raise the degree of spline curves*, CAGD 1991), so
-//! they are kept in the old points' box. Cost: `O(q²)` per control point.
+//! argument is in the span: the ends, interior knots of multiplicity
+//! `≥ p`). Cost: `O(q²)` per control point.
 
 use super::bspline::blossom_in_place;
 use super::homogeneous::Homogeneous;
@@ -104,8 +111,9 @@ pub(crate) fn elevate_bezier<T: Coefficient>(points: &[T], times: usize) -> Vec<
 /// Elevates the B-spline of degree `degree`, knots `knots` and control
 /// coefficients `points` (a valid spline: as [`BSpline::new`] accepts) by
 /// `times`: returns the knots and control coefficients of the same curve at
-/// degree `degree + times`, every distinct knot of the domain
-/// `[t_p, t_n]` repeated `times` more times, the knots outside it unchanged.
+/// degree `degree + times`, every distinct interior knot of the domain
+/// `[t_p, t_n]` repeated `times` more times and the ends clamped
+/// (multiplicity `degree + times + 1`; knots beyond the domain dropped).
 ///
 /// Generic over the coefficients: points (`SVector`) for [`BSpline`],
 /// homogeneous points `(w·P, w)` for rational splines (elevate the
@@ -128,17 +136,20 @@ pub(crate) fn elevate_spline<T: Coefficient>(
         return Ok((knots.to_vec(), points.to_vec()));
     }
     let (a, b) = (knots[p], knots[n]);
-    let in_domain = |run: &[f64]| run[0] >= a && run[0] <= b;
+    let interior = || {
+        knots
+            .chunk_by(|x, y| x == y)
+            .filter(move |run| run[0] > a && run[0] < b)
+    };
 
-    // The new knots: each distinct knot of [a, b] `times` more times.
-    let raised = knots.chunk_by(|x, y| x == y).filter(|r| in_domain(r)).count();
-    let mut new_knots = try_with_capacity(knots.len() + raised * times)?;
-    for run in knots.chunk_by(|x, y| x == y) {
-        new_knots.extend_from_slice(run);
-        if in_domain(run) {
-            new_knots.extend(std::iter::repeat_n(run[0], times));
-        }
+    // The new knots: a and b q + 1 times, each interior knot `times` more.
+    let count = interior().map(|run| run.len() + times).sum::<usize>() + 2 * (q + 1);
+    let mut new_knots = try_with_capacity(count)?;
+    new_knots.extend(std::iter::repeat_n(a, q + 1));
+    for run in interior() {
+        new_knots.extend(std::iter::repeat_n(run[0], run.len() + times));
     }
+    new_knots.extend(std::iter::repeat_n(b, q + 1));
     let n_new = new_knots.len() - q - 1;
 
     // Every non-empty span of the domain as an elevated Bézier piece
@@ -168,17 +179,13 @@ pub(crate) fn elevate_spline<T: Coefficient>(
         // Pieces j whose span lies in the support [i, i + q] of basis i.
         let first = new_spans.partition_point(|&l| l < i);
         let last = new_spans.partition_point(|&l| l <= i + q);
-        if first == last {
-            // The basis function vanishes on the domain: copy the old point
-            // (the same number of such points sits at each end, old and new).
-            let old = if new_knots[i + q + 1] <= a {
-                i
-            } else {
-                i - (n_new - n)
-            };
-            new_points.push(points[old]);
-            continue;
-        }
+        // Clamped ends leave no basis function without a span; guard anyway.
+        let (first, last) = if first < last {
+            (first, last)
+        } else {
+            let j = first.min(new_spans.len() - 1);
+            (j, j + 1)
+        };
         let args = &new_knots[i + 1..=i + q];
         let local = |j: usize| {
             let l = new_spans[j];
@@ -290,25 +297,31 @@ impl<const D: usize> RationalBezier<D> {
             .map(|(p, &w)| Homogeneous::new(p, w / top))
             .collect();
         let bounds = self.bounds();
-        let (points, weights) = elevate_bezier(&homogeneous, times)
+        let (mut points, weights): (Vec<_>, Vec<_>) = elevate_bezier(&homogeneous, times)
             .into_iter()
             .map(|h| (Point::from(clamp_to_box(h.wp / h.w, bounds)), h.w * top))
             .unzip();
+        // The ends are the old ends (one term each): exactly, not wP/w.
+        let (first, last) = (self.points()[0], self.points()[self.degree()]);
+        points[0] = first;
+        points[self.degree() + times] = last;
         RationalBezier::new(points, weights)
     }
 }
 
 impl<const D: usize> BSpline<D> {
     /// The same curve as a B-spline of degree `p + times`: every distinct
-    /// knot of the domain `[t_p, t_n]` gains `times` in multiplicity (so
-    /// the continuity `C^{p−m}` at an interior knot of multiplicity `m` is
-    /// kept), knots outside the domain are unchanged, and the domain and
-    /// the parametrization are the same. The number of control points grows
-    /// by `times × (distinct knots in the domain − 1)`.
+    /// interior knot gains `times` in multiplicity (so the continuity
+    /// `C^{p−m}` at a knot of multiplicity `m` is kept), the ends of the
+    /// domain `[t_p, t_n]` get multiplicity `p + times + 1` (clamped; knots
+    /// beyond the domain are dropped), and the domain and the
+    /// parametrization are the same. A clamped spline (every knot `times`
+    /// more often) gains `times × (distinct knots − 1)` control points.
     ///
     /// The new control points are blossoms of the elevated Bézier pieces
     /// at the new knots (the closed form of the knot removal in Piegl &
-    /// Tiller's A5.9); the module docs of `curve::elevate` give the method
+    /// Tiller's A5.9); they are convex combinations of the old ones, kept
+    /// in their box. The module docs of `curve::elevate` give the method
     /// and why it was chosen.
     ///
     /// ```
@@ -348,7 +361,50 @@ impl<const D: usize> BSpline<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Point2, Vector3};
+    use nalgebra::{Point2, Vector1, Vector3};
+
+    /// The raw new control points (before they are kept in the box) are
+    /// convex combinations of the old: in their range, to rounding, for
+    /// unclamped knot vectors with repeated and outside knots (the module
+    /// docs' claim; with the old outside knots kept they would not be).
+    #[test]
+    fn elevated_points_are_in_the_old_range() {
+        let mut state = 12345_u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..400 {
+            let p = case % 6;
+            let mut knots = Vec::new();
+            let mut value = 0.0;
+            while knots.len() < 2 * p + 2 + case % 7 {
+                let m = if next() < 0.3 { 1 + (next() * (p + 1) as f64) as usize } else { 1 };
+                knots.extend(std::iter::repeat_n(value, m.min(p + 1)));
+                value += 0.2 + next();
+            }
+            let n = knots.len() - p - 1;
+            if knots[p] >= knots[n] {
+                continue;
+            }
+            let points: Vec<Vector1<f64>> = (0..n).map(|_| Vector1::new(next() * 2.0 - 1.0)).collect();
+            let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                (l.min(v.x), h.max(v.x))
+            });
+            for times in 1..4 {
+                let (_, new) = elevate_spline(p, &knots, &points, times).unwrap();
+                for v in new {
+                    assert!(
+                        v.x >= lo - 1e-14 && v.x <= hi + 1e-14,
+                        "p={p}, +{times}, knots {knots:?}: {} outside [{lo}, {hi}]",
+                        v.x
+                    );
+                }
+            }
+        }
+    }
 
     /// The generic spline routine computes the same numbers on homogeneous
     /// points as on the equivalent 3-vectors `(w·x, w·y, w)` (it is linear
