@@ -4,13 +4,17 @@
 //! # Method
 //! Each rational Bézier span is integrated in its own parameter `s ∈ [0, 1]`
 //! (the length does not depend on the parametrization) by adaptive
-//! Gauss–Legendre quadrature: on a piece `[s₀, s₁]` the rules of 8 and 16
-//! points give `G₈` and `G₁₆`; the piece is accepted when `|G₁₆ − G₈|` is
-//! within its share of the tolerance and `G₁₆` lies in the piece's rigorous
-//! bracket (below), and halved otherwise (at most 40 levels deep, at most
-//! 2¹⁸ pieces in all). `length` is the sum of the `G₁₆`. The speed `|C′(s)|`
-//! is evaluated from the span's own homogeneous coefficients (de Casteljau
-//! and the quotient rule), so its rounding does not grow with the depth.
+//! Gauss–Legendre quadrature: a piece `[s₀, s₁]` whose 16-point value is
+//! `G` is split in halves with values `G_l`, `G_r`; the piece is accepted,
+//! contributing `G_l + G_r`, when `|G_l + G_r − G|` is within its share of
+//! the tolerance and `G_l + G_r` lies in the piece's rigorous bracket
+//! (below); otherwise each half is treated the same way (at most 40 levels
+//! deep, at most 2¹⁸ pieces in all). The speed `|C′(s)|` is evaluated from
+//! the span's own homogeneous coefficients (de Casteljau and the quotient
+//! rule), so its rounding does not grow with the depth. Comparing a rule
+//! with itself on the halves (rather than with a lower-order rule at
+//! nearly the same nodes) samples the integrand at new points, so a peak of
+//! the speed that one set of nodes misses shows up as a difference.
 //!
 //! # What is rigorous and what is estimated
 //! - **Rigorous** (up to a rounding margin that is added): `lower ≤ L ≤
@@ -21,9 +25,9 @@
 //!   combines) never lengthens the polygon, and the polygons converge to the
 //!   curve (Farin, *Curves and Surfaces for CAGD*, §4.4 and ch. 13). `lower`
 //!   and `upper` are the sums over the final pieces.
-//! - **Estimated**: `error_bound` is `Σ |G₁₆ − G₈|` over the pieces (the
-//!   error of the lower-order rule, which for a smooth integrand greatly
-//!   exceeds that of the reported higher-order one) plus a bound on the
+//! - **Estimated**: `error_bound` is `Σ |G_l + G_r − G|` over the pieces
+//!   (the error of the whole-piece value, which for a smooth integrand
+//!   greatly exceeds that of the reported two-halves one) plus a bound on the
 //!   rounding of the evaluation, capped by the rigorous
 //!   `max(length − lower, upper − length)`. It is at most the requested
 //!   tolerance unless the depth or piece limit was reached. An integrand
@@ -46,9 +50,8 @@ use crate::scratch::with_scratch;
 use crate::{Curve, Error};
 use nalgebra::Point;
 
-/// The low and high orders of the Gauss–Legendre pair.
-const LOW_ORDER: usize = 8;
-const HIGH_ORDER: usize = 16;
+/// Points of the Gauss–Legendre rule.
+const ORDER: usize = 16;
 
 /// Deepest halving of a piece.
 const MAX_DEPTH: u32 = 40;
@@ -61,6 +64,11 @@ const MAX_PIECES: usize = 1 << 18;
 /// rounding is a few `1e-15` of the length.
 const MIN_RELATIVE_TOLERANCE: f64 = 1e-13;
 
+/// The relative rounding of the sums: the 16-point sums (`18ε`, positive
+/// weights and terms), the nodes' positions (`4ε`), the compensated total
+/// (`2ε`).
+const SUM_ROUNDING: f64 = 24.0 * f64::EPSILON;
+
 /// Pieces a curve without spans starts from.
 const FALLBACK_PIECES: usize = 16;
 
@@ -70,10 +78,11 @@ const FALLBACK_PIECES: usize = 16;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArcLength {
     /// The length: the sum of 16-point Gauss–Legendre values over the
-    /// adaptive pieces.
+    /// halves of the adaptive pieces.
     pub length: f64,
-    /// The estimated bound on `|length − L|`: the sum of the differences of
-    /// the 8- and 16-point rules, plus a rounding bound, at most the
+    /// The estimated bound on `|length − L|`: the sum over the pieces of the
+    /// difference between the rule on the piece and on its halves, plus a
+    /// rounding bound, at most the
     /// rigorous `max(length − lower, upper − length)`. At most the
     /// requested tolerance unless the piece limits were reached.
     pub error_bound: f64,
@@ -88,20 +97,20 @@ pub struct ArcLength {
 
 /// The nodes and weights of one Gauss–Legendre rule on `[0, 1]`.
 struct Rule {
-    nodes: [f64; HIGH_ORDER],
-    weights: [f64; HIGH_ORDER],
+    nodes: [f64; ORDER],
+    weights: [f64; ORDER],
     len: usize,
 }
 
 impl Rule {
-    /// The `n`-point rule (`n ≤ HIGH_ORDER`): the roots `xᵢ` of the
+    /// The `n`-point rule (`n ≤ ORDER`): the roots `xᵢ` of the
     /// Legendre polynomial `Pₙ` by Newton's method from
     /// `cos(π(i − ¼)/(n + ½))`, weights `2/((1 − xᵢ²)Pₙ′(xᵢ)²)` (Abramowitz
     /// & Stegun 25.4.29), mapped from `[−1, 1]` to `[0, 1]`.
     fn new(n: usize) -> Self {
         let mut rule = Rule {
-            nodes: [0.0; HIGH_ORDER],
-            weights: [0.0; HIGH_ORDER],
+            nodes: [0.0; ORDER],
+            weights: [0.0; ORDER],
             len: n,
         };
         for i in 0..n {
@@ -258,60 +267,109 @@ impl<C: Curve<D> + ?Sized, const D: usize> Source<D> for CurveSource<'_, C> {
     }
 }
 
-/// The running sums of the accepted pieces.
+/// The running sums of the accepted pieces; the length by Neumaier's
+/// compensated summation (error `2ε·length` whatever the number of pieces).
 #[derive(Debug, Clone, Copy, Default)]
 struct Tally {
     length: f64,
+    compensation: f64,
     estimate: f64,
     lower: f64,
     upper: f64,
     pieces: usize,
 }
 
+impl Tally {
+    fn add_length(&mut self, x: f64) {
+        let sum = self.length + x;
+        self.compensation += if self.length.abs() >= x.abs() {
+            (self.length - sum) + x
+        } else {
+            (x - sum) + self.length
+        };
+        self.length = sum;
+    }
+
+    /// Adds an accepted piece.
+    fn accept(&mut self, length: f64, difference: f64, chord: f64, polygon: f64) {
+        self.add_length(length);
+        self.estimate += difference;
+        self.lower += chord;
+        self.upper += polygon;
+        self.pieces += 1;
+    }
+
+    /// The compensated length.
+    fn length(&self) -> f64 {
+        self.length + self.compensation
+    }
+}
+
 /// The adaptive quadrature: the fixed inputs.
 struct Adaptive<'a, S> {
     source: &'a S,
-    low: &'a Rule,
-    high: &'a Rule,
+    rule: &'a Rule,
     /// The error allowed on a piece, from its parameter width and polygon.
     allowed: &'a dyn Fn(f64, f64) -> f64,
 }
 
 impl<S> Adaptive<'_, S> {
-    /// Integrates `[s₀, s₁]` (end points `p0`, `p1`) into `tally`, halving
-    /// until the piece is accepted.
+    /// The rule's value on the piece `[s₀, s₁]`.
+    fn value<const D: usize>(&self, piece: (f64, f64)) -> Result<f64, Error>
+    where
+        S: Source<D>,
+    {
+        self.rule.integrate(piece, |s| self.source.speed(s))
+    }
+
+    /// Integrates `[s₀, s₁]` (end points `p0`, `p1`, the rule's value on
+    /// it `whole`) into `tally`, halving until the piece is accepted.
     fn run<const D: usize>(
         &self,
         (s0, s1): (f64, f64),
         (p0, p1): (Point<f64, D>, Point<f64, D>),
+        whole: f64,
         depth: u32,
         tally: &mut Tally,
     ) -> Result<(), Error>
     where
         S: Source<D>,
     {
+        let mid = 0.5 * (s0 + s1);
         let chord = (p1 - p0).norm();
         let polygon = self.source.polygon(s0, s1);
-        let speed = |s: f64| self.source.speed(s);
-        let low = self.low.integrate((s0, s1), speed)?;
-        let high = self.high.integrate((s0, s1), speed)?;
-        let difference = (high - low).abs();
-        let slack = 1e-12 * polygon.min(high.abs() + chord) + f64::MIN_POSITIVE;
-        let bracketed = high >= chord - slack && high <= polygon + slack;
+        if mid <= s0 || mid >= s1 {
+            // Too narrow to halve: accept the piece as it is.
+            tally.accept(whole, 0.0, chord, polygon);
+            return Ok(());
+        }
+        let (left, right) = (self.value((s0, mid))?, self.value((mid, s1))?);
+        let halves = left + right;
+        let difference = (halves - whole).abs();
+        let slack = 1e-12 * polygon.min(halves.abs() + chord) + f64::MIN_POSITIVE;
+        let bracketed = halves >= chord - slack && halves <= polygon + slack;
         let converged = difference <= (self.allowed)(s1 - s0, polygon) && bracketed;
-        let mid = 0.5 * (s0 + s1);
-        if converged || depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES || mid <= s0 || mid >= s1
-        {
-            tally.length += high;
-            tally.estimate += difference;
-            tally.lower += chord;
-            tally.upper += polygon;
-            tally.pieces += 1;
+        if converged || depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES {
+            tally.accept(halves, difference, chord, polygon);
             return Ok(());
         }
         let pm = self.source.point(mid)?;
-        self.run((s0, mid), (p0, pm), depth + 1, tally)?;
-        self.run((mid, s1), (pm, p1), depth + 1, tally)
+        self.run((s0, mid), (p0, pm), left, depth + 1, tally)?;
+        self.run((mid, s1), (pm, p1), right, depth + 1, tally)
+    }
+
+    /// Integrates `[s₀, s₁]` from scratch.
+    fn start<const D: usize>(
+        &self,
+        piece: (f64, f64),
+        ends: (Point<f64, D>, Point<f64, D>),
+        tally: &mut Tally,
+    ) -> Result<(), Error>
+    where
+        S: Source<D>,
+    {
+        let whole = self.value(piece)?;
+        self.run(piece, ends, whole, 0, tally)
     }
 }
 
@@ -339,10 +397,10 @@ pub(crate) fn arc_length<C: Curve<D> + ?Sized, const D: usize>(
     tolerance: f64,
 ) -> Result<ArcLength, Error> {
     check_tolerance(tolerance)?;
-    let (low, high) = (Rule::new(LOW_ORDER), Rule::new(HIGH_ORDER));
+    let rule = Rule::new(ORDER);
     match curve.rational_bezier_spans() {
-        Some(spans) => spans_length(&spans, tolerance, &low, &high),
-        None => sampled_length(curve, tolerance, &low, &high),
+        Some(spans) => spans_length(&spans, tolerance, &rule),
+        None => sampled_length(curve, tolerance, &rule),
     }
 }
 
@@ -350,8 +408,7 @@ pub(crate) fn arc_length<C: Curve<D> + ?Sized, const D: usize>(
 fn spans_length<const D: usize>(
     spans: &[RationalBezierSpan<D>],
     tolerance: f64,
-    low: &Rule,
-    high: &Rule,
+    rule: &Rule,
 ) -> Result<ArcLength, Error> {
     validate_spans(spans)?;
     let sources: Vec<SpanSource<D>> = spans.iter().map(SpanSource::new).collect();
@@ -371,30 +428,32 @@ fn spans_length<const D: usize>(
             pieces: spans.len(),
         });
     }
-    // Half the tolerance shared by the pieces' polygons (a piece's polygon
-    // bounds its length), half by parameter width: the sums over the final
-    // pieces are at most the tolerance.
+    // Half the tolerance for the quadrature, shared half by the pieces'
+    // polygons (a piece's polygon bounds its length) and half by parameter
+    // width: the sums over the final pieces are at most tolerance / 2. The
+    // other half covers the rounding (at most a quarter, by the minimum
+    // tolerance) and the sums' (below).
     let count = spans.len() as f64;
     let allowed = |width: f64, polygon: f64| {
-        tolerance * (0.5 * polygon / total + 0.5 * width / count).min(1.0)
+        0.5 * tolerance * (0.5 * polygon / total + 0.5 * width / count).min(1.0)
     };
     let mut tally = Tally::default();
-    for source in &sources {
+    let mut margin = 0.0;
+    for (source, span) in sources.iter().zip(spans) {
         let adaptive = Adaptive {
             source,
-            low,
-            high,
+            rule,
             allowed: &allowed,
         };
         let ends = (source.point(0.0)?, source.point(1.0)?);
-        adaptive.run((0.0, 1.0), ends, 0, &mut tally)?;
+        let before = tally.pieces;
+        adaptive.start((0.0, 1.0), ends, &mut tally)?;
+        // Each piece's chord and polygon vertices: the evaluation's or two
+        // subdivisions' rounding, below twice the speed's bound.
+        margin += 2.0 * SpanSource::rounding(span) * (1 + tally.pieces - before) as f64;
     }
-    // Rounding: the speeds' (rounding per unit parameter, one unit per
-    // span), the sums', and the polygons' and chords' vertices.
-    let sums = 2.0 * (HIGH_ORDER as f64 + tally.pieces as f64) * f64::EPSILON;
-    let evaluation = rounding + sums * tally.length;
-    let margin = rounding * (1.0 + tally.pieces as f64) + sums * tally.upper;
-    Ok(finish(tally, evaluation, margin))
+    let evaluation = rounding + SUM_ROUNDING * tally.length();
+    Ok(finish(tally, evaluation, margin + SUM_ROUNDING * tally.upper))
 }
 
 /// The estimate, the bracket widened by `margin`, and the error bound
@@ -402,7 +461,7 @@ fn spans_length<const D: usize>(
 fn finish(tally: Tally, evaluation: f64, margin: f64) -> ArcLength {
     let lower = (tally.lower - margin).max(0.0);
     let upper = tally.upper + margin;
-    let length = tally.length.clamp(lower, upper);
+    let length = tally.length().clamp(lower, upper);
     let rigorous = (length - lower).max(upper - length);
     ArcLength {
         length,
@@ -417,8 +476,7 @@ fn finish(tally: Tally, evaluation: f64, margin: f64) -> ArcLength {
 fn sampled_length<C: Curve<D> + ?Sized, const D: usize>(
     curve: &C,
     tolerance: f64,
-    low: &Rule,
-    high: &Rule,
+    rule: &Rule,
 ) -> Result<ArcLength, Error> {
     let (a, b) = curve.domain();
     if !(a.is_finite() && b.is_finite() && a < b) {
@@ -440,19 +498,17 @@ fn sampled_length<C: Curve<D> + ?Sized, const D: usize>(
     let chords: f64 = ends.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     check_minimum(tolerance, MIN_RELATIVE_TOLERANCE * chords)?;
     let width = b - a;
-    let allowed = |w: f64, _: f64| tolerance * (w / width).min(1.0);
+    let allowed = |w: f64, _: f64| 0.5 * tolerance * (w / width).min(1.0);
     let adaptive = Adaptive {
         source: &source,
-        low,
-        high,
+        rule,
         allowed: &allowed,
     };
     let mut tally = Tally::default();
     for i in 0..FALLBACK_PIECES {
-        adaptive.run((at(i), at(i + 1)), (ends[i], ends[i + 1]), 0, &mut tally)?;
+        adaptive.start((at(i), at(i + 1)), (ends[i], ends[i + 1]), &mut tally)?;
     }
-    let sums = 2.0 * (HIGH_ORDER as f64 + tally.pieces as f64) * f64::EPSILON;
-    let (evaluation, margin) = (sums * tally.length, sums * tally.lower);
+    let (evaluation, margin) = (SUM_ROUNDING * tally.length(), SUM_ROUNDING * tally.lower);
     Ok(finish(tally, evaluation, margin))
 }
 
@@ -465,7 +521,7 @@ mod tests {
     /// weights sum to one.
     #[test]
     fn gauss_legendre_rules_are_exact_to_degree_2n_minus_1() {
-        for n in [1, 2, 5, LOW_ORDER, HIGH_ORDER] {
+        for n in [1, 2, 5, 8, ORDER] {
             let rule = Rule::new(n);
             let total: f64 = rule.weights[..n].iter().sum();
             assert!((total - 1.0).abs() < 1e-15, "n={n}: {total}");
@@ -478,7 +534,7 @@ mod tests {
             }
             // Not exact one degree higher (the rule has exactly n points;
             // beyond n = 8 that error is below double precision).
-            if n <= LOW_ORDER {
+            if n <= 8 {
                 let k = 2 * n as i32;
                 let got = rule.integrate((0.0, 1.0), |x| Ok(x.powi(k))).unwrap();
                 assert!((got - 1.0 / (k + 1) as f64).abs() > 1e-12, "n={n}");
