@@ -252,12 +252,20 @@ fn uniform_and_clamped_splines_elevate() {
 fn degenerate_splines_elevate() {
     // Degree 1, knots 0 1 1 2 3: t_1 = t_2 = 1 starts the domain [1, 2];
     // the first point's basis vanishes there.
-    let pts = vec![Point2::new(9.0, 9.0), Point2::new(0.0, 0.0), Point2::new(1.0, 2.0)];
+    let pts = vec![
+        Point2::new(9.0, 9.0),
+        Point2::new(0.0, 0.0),
+        Point2::new(1.0, 2.0),
+    ];
     let curve = BSpline::new(1, vec![0.0, 1.0, 1.0, 2.0, 3.0], pts).unwrap();
     for times in 1..=3 {
         let up = curve.elevate_degree(times).unwrap();
         check_spline_elevation(&curve, &up, times);
-        assert_eq!(up.points()[0], Point2::new(0.0, 0.0), "the unused point is gone");
+        assert_eq!(
+            up.points()[0],
+            Point2::new(0.0, 0.0),
+            "the unused point is gone"
+        );
     }
     // Degree 0: a step function; elevated, still discontinuous.
     let steps = BSpline::new(
@@ -358,7 +366,11 @@ fn elevation_limits_are_errors() {
     );
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let quarter = RationalBezier::new(
-        vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0), Point2::new(0.0, 1.0)],
+        vec![
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(0.0, 1.0),
+        ],
         vec![1.0, h, 1.0],
     )
     .unwrap();

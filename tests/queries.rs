@@ -208,13 +208,29 @@ fn nearest_point_on_random_beziers_is_never_beaten() {
         let far = [1.0, 2.0, 30.0][case % 3];
         let p = Point2::new(rng.range(-far, far), rng.range(-far, far));
         let near = curve.nearest_point(&p).unwrap();
-        check_nearest(&curve, &p, &near, scale(&pts, &p), &format!("2D degree {degree}"));
+        check_nearest(
+            &curve,
+            &p,
+            &near,
+            scale(&pts, &p),
+            &format!("2D degree {degree}"),
+        );
 
         let pts3 = random_points::<3>(&mut rng, degree + 1);
         let curve3 = Bezier::new(pts3.clone()).unwrap();
-        let p3 = Point3::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
+        let p3 = Point3::new(
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+            rng.range(-2.0, 2.0),
+        );
         let near3 = curve3.nearest_point(&p3).unwrap();
-        check_nearest(&curve3, &p3, &near3, scale(&pts3, &p3), &format!("3D degree {degree}"));
+        check_nearest(
+            &curve3,
+            &p3,
+            &near3,
+            scale(&pts3, &p3),
+            &format!("3D degree {degree}"),
+        );
     }
 }
 
@@ -230,7 +246,13 @@ fn nearest_point_on_random_splines_and_rational_curves() {
         };
         let p = Point2::new(rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
         let near = spline.nearest_point(&p).unwrap();
-        check_nearest(&spline, &p, &near, scale(&pts, &p), &format!("spline {case}"));
+        check_nearest(
+            &spline,
+            &p,
+            &near,
+            scale(&pts, &p),
+            &format!("spline {case}"),
+        );
 
         let degree = 1 + case % 7;
         let pts = random_points::<2>(&mut rng, degree + 1);
@@ -238,7 +260,13 @@ fn nearest_point_on_random_splines_and_rational_curves() {
             RationalBezier::new(pts.clone(), random_weights(&mut rng, degree + 1)).unwrap();
         let p = Point2::new(rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
         let near = rational.nearest_point(&p).unwrap();
-        check_nearest(&rational, &p, &near, scale(&pts, &p), &format!("rational {case}"));
+        check_nearest(
+            &rational,
+            &p,
+            &near,
+            scale(&pts, &p),
+            &format!("rational {case}"),
+        );
     }
 }
 
@@ -302,7 +330,13 @@ fn nearest_point_on_the_curve_and_at_centres_of_curvature() {
             continue;
         }
         let near = curve.nearest_point(&centre).unwrap();
-        check_nearest(&curve, &centre, &near, scale(&pts, &centre), "centre of curvature");
+        check_nearest(
+            &curve,
+            &centre,
+            &near,
+            scale(&pts, &centre),
+            "centre of curvature",
+        );
     }
 }
 
@@ -310,7 +344,12 @@ fn nearest_point_on_the_curve_and_at_centres_of_curvature() {
 /// radius is right; near the centre the answer is on the ray through it.
 #[test]
 fn nearest_point_at_the_centre_of_circles() {
-    for (cx, cy, r) in [(0.0, 0.0, 1.0), (3.0, -2.0, 0.5), (1e3, 1e3, 1e-2), (0.0, 0.0, 1e4)] {
+    for (cx, cy, r) in [
+        (0.0, 0.0, 1.0),
+        (3.0, -2.0, 0.5),
+        (1e3, 1e3, 1e-2),
+        (0.0, 0.0, 1e4),
+    ] {
         let centre = Point2::new(cx, cy);
         let circle = Circle::new(centre, r);
         let near = circle.nearest_point(&centre).unwrap();
@@ -361,7 +400,11 @@ fn projector_and_far_points() {
     let spline = BSpline::clamped(3, pts.clone()).unwrap();
     let projector = CurveProjector::new(&spline).unwrap();
     for _ in 0..20 {
-        let p = Point3::new(rng.range(-1e3, 1e3), rng.range(-1e3, 1e3), rng.range(-1e3, 1e3));
+        let p = Point3::new(
+            rng.range(-1e3, 1e3),
+            rng.range(-1e3, 1e3),
+            rng.range(-1e3, 1e3),
+        );
         let a = projector.nearest(&p).unwrap();
         assert_eq!(a, spline.nearest_point(&p).unwrap());
         check_nearest(&spline, &p, &a, scale(&pts, &p), "far point");
@@ -374,7 +417,13 @@ fn projector_and_far_points() {
 #[test]
 fn curves_without_spans_get_an_uncertified_answer() {
     let arc = Arc { r: 2.0, theta: 2.5 };
-    for (x, y) in [(3.0, 1.0), (0.1, 0.3), (-1.0, -3.0), (-4.0, 0.5), (0.0, 0.0)] {
+    for (x, y) in [
+        (3.0, 1.0),
+        (0.1, 0.3),
+        (-1.0, -3.0),
+        (-4.0, 0.5),
+        (0.0, 0.0),
+    ] {
         let p = Point2::new(x, y);
         let near = arc.nearest_point(&p).unwrap();
         assert!(!near.certified);
@@ -514,14 +563,23 @@ fn composite_length<const D: usize>(
     let s = (10.0_f64 / 7.0).sqrt();
     let (x1, x2) = ((5.0 - 2.0 * s).sqrt() / 3.0, (5.0 + 2.0 * s).sqrt() / 3.0);
     let r = 70f64.sqrt();
-    let (w0, w1, w2) = (128.0 / 225.0, (322.0 + 13.0 * r) / 900.0, (322.0 - 13.0 * r) / 900.0);
+    let (w0, w1, w2) = (
+        128.0 / 225.0,
+        (322.0 + 13.0 * r) / 900.0,
+        (322.0 - 13.0 * r) / 900.0,
+    );
     let rule = [(0.0, w0), (x1, w1), (-x1, w1), (x2, w2), (-x2, w2)];
     let integrate = |m: usize| {
         let h = (b - a) / m as f64;
         let (mut sum, mut carry) = (0.0_f64, 0.0_f64);
         for i in 0..m {
             let c = a + h * (i as f64 + 0.5);
-            let piece = rule.iter().map(|&(x, w)| w * speed(c + 0.5 * h * x)).sum::<f64>() * 0.5 * h;
+            let piece = rule
+                .iter()
+                .map(|&(x, w)| w * speed(c + 0.5 * h * x))
+                .sum::<f64>()
+                * 0.5
+                * h;
             let y = piece - carry;
             let t = sum + y;
             carry = (t - sum) - y;
@@ -530,7 +588,10 @@ fn composite_length<const D: usize>(
         sum
     };
     let fine = integrate(intervals);
-    (fine, (fine - integrate(intervals / 2)).abs() + 16.0 * f64::EPSILON * fine)
+    (
+        fine,
+        (fine - integrate(intervals / 2)).abs() + 16.0 * f64::EPSILON * fine,
+    )
 }
 
 /// Checks an arc length against an exact value (within `reference_error`):
@@ -546,12 +607,19 @@ fn check_length<C: Curve<D>, const D: usize>(
 ) {
     let arc = match curve.arc_length(tolerance) {
         Err(Error::ToleranceTooSmall { tolerance: t, min }) => {
-            assert!(t == tolerance && t < min && min <= 1e-10 * exact, "{what}: min {min:e}");
+            assert!(
+                t == tolerance && t < min && min <= 1e-10 * exact,
+                "{what}: min {min:e}"
+            );
             return;
         }
         other => other.unwrap(),
     };
-    assert!(arc.error_bound <= tolerance, "{what}: bound {:e}", arc.error_bound);
+    assert!(
+        arc.error_bound <= tolerance,
+        "{what}: bound {:e}",
+        arc.error_bound
+    );
     assert!(
         (arc.length - exact).abs() <= arc.error_bound + reference_error,
         "{what}: {} vs {exact}: off by {:e}, bound {:e}",
@@ -604,7 +672,13 @@ fn arc_length_of_lines_circles_and_parabolas() {
         .unwrap();
         let exact = x * (1.0 + 4.0 * x * x).sqrt() / 2.0 + (2.0 * x).asinh() / 4.0;
         for tol in [1e-6 * exact, 1e-12 * exact] {
-            check_length(&parabola, tol, exact, 2.0 * f64::EPSILON * exact, "parabola");
+            check_length(
+                &parabola,
+                tol,
+                exact,
+                2.0 * f64::EPSILON * exact,
+                "parabola",
+            );
         }
     }
 }
@@ -617,15 +691,28 @@ fn arc_length_of_random_curves_against_composite_quadrature() {
         let degree = 1 + case % 7;
         let pts = random_points::<3>(&mut rng, degree + 1);
         let bezier = Bezier::new(pts.clone()).unwrap();
-        let (exact, err) = composite_length::<3>(|t| bezier.derivative(t).norm(), (0.0, 1.0), 20_000);
+        let (exact, err) =
+            composite_length::<3>(|t| bezier.derivative(t).norm(), (0.0, 1.0), 20_000);
         for tol in [1e-4, 1e-9, 1e-12] {
-            check_length(&bezier, tol * exact, exact, err, &format!("Bézier {degree}"));
+            check_length(
+                &bezier,
+                tol * exact,
+                exact,
+                err,
+                &format!("Bézier {degree}"),
+            );
         }
         let rational = RationalBezier::new(pts, random_weights(&mut rng, degree + 1)).unwrap();
         let (exact, err) =
             composite_length::<3>(|t| rational.derivative(t).norm(), (0.0, 1.0), 20_000);
         for tol in [1e-4, 1e-9, 1e-12] {
-            check_length(&rational, tol * exact, exact, err, &format!("rational {degree}"));
+            check_length(
+                &rational,
+                tol * exact,
+                exact,
+                err,
+                &format!("rational {degree}"),
+            );
         }
         let spline = BSpline::uniform(3, random_points::<2>(&mut rng, 5 + case % 6)).unwrap();
         let (a, b) = spline.domain();
@@ -698,5 +785,8 @@ fn arc_length_limits() {
     // A curve that is a point has length zero.
     let point = Bezier::new(vec![Point2::new(1.0, 2.0); 4]).unwrap();
     let got = point.arc_length(1e-9).unwrap();
-    assert_eq!((got.length, got.error_bound, got.lower, got.upper), (0.0, 0.0, 0.0, 0.0));
+    assert_eq!(
+        (got.length, got.error_bound, got.lower, got.upper),
+        (0.0, 0.0, 0.0, 0.0)
+    );
 }

@@ -42,9 +42,9 @@
 //! up to the curve's own evaluation, `upper` is infinite, and
 //! `error_bound` is the estimate alone.
 
+use super::RationalBezierSpan;
 use super::homogeneous::{Homogeneous, project, project_with_derivative};
 use super::query::validate_spans;
-use super::RationalBezierSpan;
 use crate::bernstein::{self, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
@@ -453,7 +453,11 @@ fn spans_length<const D: usize>(
         margin += 2.0 * SpanSource::rounding(span) * (1 + tally.pieces - before) as f64;
     }
     let evaluation = rounding + SUM_ROUNDING * tally.length();
-    Ok(finish(tally, evaluation, margin + SUM_ROUNDING * tally.upper))
+    Ok(finish(
+        tally,
+        evaluation,
+        margin + SUM_ROUNDING * tally.upper,
+    ))
 }
 
 /// The estimate, the bracket widened by `margin`, and the error bound

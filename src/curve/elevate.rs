@@ -199,9 +199,12 @@ pub(crate) fn elevate_spline<T: Coefficient>(
                 .map(|&t| ((1.0 - u(t)).abs() + u(t).abs()).ln())
                 .sum::<f64>()
         };
-        let j = (first + 1..last).fold(first, |best, j| {
-            if growth(j) < growth(best) { j } else { best }
-        });
+        let j = (first + 1..last).fold(
+            first,
+            |best, j| {
+                if growth(j) < growth(best) { j } else { best }
+            },
+        );
         let u = local(j);
         let piece = &pieces[j * (q + 1)..(j + 1) * (q + 1)];
         let value = with_scratch(q + 1, points[0], |s| {
@@ -381,7 +384,11 @@ mod tests {
             let mut knots = Vec::new();
             let mut value = 0.0;
             while knots.len() < 2 * p + 2 + case % 7 {
-                let m = if next() < 0.3 { 1 + (next() * (p + 1) as f64) as usize } else { 1 };
+                let m = if next() < 0.3 {
+                    1 + (next() * (p + 1) as f64) as usize
+                } else {
+                    1
+                };
                 knots.extend(std::iter::repeat_n(value, m.min(p + 1)));
                 value += 0.2 + next();
             }
@@ -389,10 +396,13 @@ mod tests {
             if knots[p] >= knots[n] {
                 continue;
             }
-            let points: Vec<Vector1<f64>> = (0..n).map(|_| Vector1::new(next() * 2.0 - 1.0)).collect();
-            let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                (l.min(v.x), h.max(v.x))
-            });
+            let points: Vec<Vector1<f64>> =
+                (0..n).map(|_| Vector1::new(next() * 2.0 - 1.0)).collect();
+            let (lo, hi) = points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v.x), h.max(v.x))
+                });
             for times in 1..4 {
                 let (_, new) = elevate_spline(p, &knots, &points, times).unwrap();
                 for v in new {
@@ -413,14 +423,24 @@ mod tests {
     #[test]
     fn homogeneous_and_vector_coefficients_agree() {
         let knots = [0.0, 0.0, 0.0, 0.3, 0.3, 0.7, 1.0, 1.0, 1.0];
-        let pts = [(0.0, 0.0), (1.0, 2.0), (2.0, -1.0), (3.0, 1.0), (4.0, 0.5), (5.0, 2.0)];
+        let pts = [
+            (0.0, 0.0),
+            (1.0, 2.0),
+            (2.0, -1.0),
+            (3.0, 1.0),
+            (4.0, 0.5),
+            (5.0, 2.0),
+        ];
         let weights = [1.0, 0.5, 2.0, 0.7, 1.3, 1.0];
         let h: Vec<Homogeneous<2>> = pts
             .iter()
             .zip(weights)
             .map(|(&(x, y), w)| Homogeneous::new(&Point2::new(x, y), w))
             .collect();
-        let v: Vec<Vector3<f64>> = h.iter().map(|h| Vector3::new(h.wp.x, h.wp.y, h.w)).collect();
+        let v: Vec<Vector3<f64>> = h
+            .iter()
+            .map(|h| Vector3::new(h.wp.x, h.wp.y, h.w))
+            .collect();
         for times in 0..4 {
             let (kh, ph) = elevate_spline(2, &knots, &h, times).unwrap();
             let (kv, pv) = elevate_spline(2, &knots, &v, times).unwrap();

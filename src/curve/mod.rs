@@ -40,9 +40,9 @@ pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
 #[allow(unused_imports)] // for Nurbs (issue 17, in progress)
 pub(crate) use homogeneous::{Homogeneous, quotient_rule};
+pub use query::{CurveProjector, NearestPoint};
 #[allow(unused_imports)] // for Nurbs (issue 17, in progress)
 pub(crate) use rational_bezier::validate_weights;
-pub use query::{CurveProjector, NearestPoint};
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 
 use crate::Error;

@@ -21,19 +21,23 @@
 //! `gᵣ = Σ_{i+k=r} C(n,i)C(m,k)/C(n+m,r) · yᵢ·dₖ`, with a bound on its
 //! rounding error (below), and every root of `g` in the span is isolated by
 //! [`find_roots_to`](crate::roots::find_roots_to), which misses none for
-//! coefficients within that bound. Each root is polished by Newton's method
-//! on the unsquared condition `f` (the curve's own derivatives, not the
-//! formed polynomial), the better of the root and its polished value kept;
-//! the span ends are candidates too; the nearest candidate of all wins.
+//! coefficients within that bound, and refined there to double precision;
+//! the span ends are candidates too; the nearest
+//! candidate of all wins, and is then polished by Newton's method on the
+//! unsquared condition `f` (the curve's own derivatives, not the formed
+//! polynomial), the polished value kept if it is nearer. (Polishing only the
+//! winner is enough: near a critical point the distance is flat to second
+//! order, so an unpolished root's distance is already within rounding.)
 //!
 //! # The rounding bound
 //! `yᵢ = wᵢ(Pᵢ − P)` carries `2ε` relative error, each `dₖ` at most
 //! `(n + 8)ε·Mₖ` where `Mₖ` bounds its terms' magnitudes (componentwise),
 //! and the products, the `D` dot-product terms, the binomial ratios and the
 //! sum over `i + k = r` add `(n + D + 5)ε`: every `gᵣ` is within
-//! `(2n + D + 20)ε · maxᵣ Σ β·|yᵢ|·Mₖ` of the exact value (the polynomial of
-//! the exact `P` and control points, with the span's weights scaled so the
-//! largest is 1).
+//! `(2n + D + 20)ε · Σ_{i+k=r} β·|yᵢ|·Mₖ ≤ (2n + D + 20)ε · maxᵢ‖yᵢ‖∞ ·
+//! maxₖ‖Mₖ‖₁` of the exact value (the weights `β` of one `r` sum to one;
+//! the exact value is the polynomial of the exact `P` and control points,
+//! with the span's weights scaled so the largest is 1).
 //!
 //! # Why the answer is global
 //! The nearest point is an end or a root of `g` on some span; no root is
@@ -57,8 +61,8 @@ use nalgebra::{Point, SVector};
 /// reported as one; Newton's polish and the distance comparison finish them.
 const CANDIDATE_WIDTH: f64 = 1.0 / (1u64 << 32) as f64;
 
-/// Newton steps at most per candidate.
-const POLISH_STEPS: usize = 16;
+/// Newton steps at most when polishing the winner.
+const POLISH_STEPS: usize = 8;
 
 /// Uniform samples of a curve without spans (see [`Curve::nearest_point`]).
 const FALLBACK_SEGMENTS: usize = 4096;
@@ -127,8 +131,9 @@ struct SpanForm<const D: usize> {
     weights: Vec<f64>,
     /// The Bernstein coefficients `dₖ` of `N` (degree `m`).
     numerator: Vec<SVector<f64, D>>,
-    /// Componentwise bounds `Mₖ` on the terms that form each `dₖ`.
-    magnitude: Vec<SVector<f64, D>>,
+    /// `maxₖ‖Mₖ‖₁`, with `Mₖ` the componentwise bounds on the terms that
+    /// form `dₖ` (for the rounding bound).
+    magnitude: f64,
     /// `C(n,i)·C(m,k)/C(n+m,i+k)`, row-major `(n + 1) × (m + 1)`.
     product: Vec<f64>,
 }
@@ -140,8 +145,11 @@ impl<const D: usize> SpanForm<D> {
         let points: Vec<SVector<f64, D>> = curve.points().iter().map(|p| p.coords).collect();
         let (weights, numerator, magnitude) = if curve.is_polynomial() {
             // N = C′: n(Pᵢ₊₁ − Pᵢ), degree n − 1.
-            let d: Vec<SVector<f64, D>> = points.windows(2).map(|w| (w[1] - w[0]) * n as f64).collect();
-            let m = d.iter().map(|v| v.abs()).collect();
+            let d: Vec<SVector<f64, D>> = points
+                .windows(2)
+                .map(|w| (w[1] - w[0]) * n as f64)
+                .collect();
+            let m = d.iter().fold(0.0_f64, |m, v| m.max(v.abs().sum()));
             (vec![1.0; n + 1], d, m)
         } else {
             let top = curve.weights().iter().fold(0.0_f64, |m, &w| m.max(w));
@@ -158,14 +166,10 @@ impl<const D: usize> SpanForm<D> {
                     m[k] += term.abs();
                 }
             }
-            (w, d, m)
+            (w, d, m.iter().fold(0.0_f64, |a, v| a.max(v.sum())))
         };
         let mdeg = numerator.len().saturating_sub(1);
-        let (row_n, row_m, row_nm) = (
-            binomial_row(n),
-            binomial_row(mdeg),
-            binomial_row(n + mdeg),
-        );
+        let (row_n, row_m, row_nm) = (binomial_row(n), binomial_row(mdeg), binomial_row(n + mdeg));
         let product = (0..=n)
             .flat_map(|i| {
                 let (row_n, row_m, row_nm) = (&row_n, &row_m, &row_nm);
@@ -211,35 +215,46 @@ impl<const D: usize> SpanForm<D> {
     fn with_condition<R>(&self, p: &Point<f64, D>, then: impl FnOnce(&[f64], f64) -> R) -> R {
         let n = self.curve.degree();
         let m = self.numerator.len().saturating_sub(1);
-        let len = if self.numerator.is_empty() { 0 } else { n + m + 1 };
-        with_scratch(2 * len, 0.0, |buf| {
-            let (g, size) = buf.split_at_mut(len);
+        let len = if self.numerator.is_empty() {
+            0
+        } else {
+            n + m + 1
+        };
+        with_scratch(len, 0.0, |g| {
+            let mut largest = 0.0_f64;
             for (i, (pi, &wi)) in self.curve.points().iter().zip(&self.weights).enumerate() {
                 let y = (pi - p) * wi;
-                let y_abs = y.abs();
-                for (k, (d, mk)) in self.numerator.iter().zip(&self.magnitude).enumerate() {
-                    let beta = self.product[i * (m + 1) + k];
-                    g[i + k] += beta * y.dot(d);
-                    size[i + k] += beta * y_abs.dot(mk);
+                largest = largest.max(y.amax());
+                for (k, d) in self.numerator.iter().enumerate() {
+                    g[i + k] += self.product[i * (m + 1) + k] * y.dot(d);
                 }
             }
-            let largest = size.iter().fold(0.0_f64, |a, &b| a.max(b));
             let gamma = (2 * n + D + 20) as f64 * f64::EPSILON * 1.01;
-            then(g, gamma * largest)
+            then(g, gamma * largest * self.magnitude)
         })
     }
 
-    /// The span's point at `s` and its distance from `p`.
+    /// The span's point at `s` and its distance from `p` (at the ends, the
+    /// end control points themselves).
     fn candidate(&self, p: &Point<f64, D>, s: f64) -> (Point<f64, D>, f64) {
-        let point = self.curve.eval(s);
+        let points = self.curve.points();
+        let point = if s <= 0.0 {
+            points[0]
+        } else if s >= 1.0 {
+            points[points.len() - 1]
+        } else {
+            self.curve.eval(s)
+        };
         (point, (point - p).norm())
     }
 
     /// Newton's method on `f(s) = (C(s) − P)·C′(s)`, `f′ = |C′|² + (C − P)·C″`,
-    /// from `s`, kept in `[0, 1]`; stops on a step below `2ε` or a
-    /// derivative that is zero or not finite.
+    /// from `s`, kept in `[0, 1]`; stops on a step below `4ε`, a step no
+    /// smaller than the one before (rounding noise, or no convergence), or
+    /// a derivative that is zero or not finite.
     fn polish(&self, p: &Point<f64, D>, mut s: f64) -> f64 {
         let mut d = [SVector::<f64, D>::zeros(); 3];
+        let mut last_step = f64::INFINITY;
         for _ in 0..POLISH_STEPS {
             if self.curve.derivatives(s, &mut d).is_err() {
                 break;
@@ -252,8 +267,12 @@ impl<const D: usize> SpanForm<D> {
             }
             let next = (s - f / df).clamp(0.0, 1.0);
             let step = (next - s).abs();
+            if step >= last_step {
+                break;
+            }
             s = next;
-            if step <= 2.0 * f64::EPSILON {
+            last_step = step;
+            if step <= 4.0 * f64::EPSILON {
                 break;
             }
         }
@@ -266,14 +285,36 @@ struct Best<const D: usize> {
     t: f64,
     point: Point<f64, D>,
     distance: f64,
+    /// Where the projector found it: span index and local parameter.
+    at: (usize, f64),
 }
 
 impl<const D: usize> Best<D> {
-    /// Keeps `(t, point, distance)` if it is nearer, or as near with a
-    /// smaller parameter.
-    fn offer(&mut self, t: f64, point: Point<f64, D>, distance: f64) {
-        if distance < self.distance || (distance == self.distance && t < self.t) {
-            *self = Best { t, point, distance };
+    /// No candidate yet.
+    fn none() -> Self {
+        Best {
+            t: f64::INFINITY,
+            point: Point::origin(),
+            distance: f64::INFINITY,
+            at: (0, 0.0),
+        }
+    }
+
+    /// Keeps the candidate if it is nearer, or as near with a smaller
+    /// parameter.
+    fn offer(&mut self, candidate: Best<D>) {
+        let (t, d) = (candidate.t, candidate.distance);
+        if d < self.distance || (d == self.distance && t < self.t) {
+            *self = candidate;
+        }
+    }
+
+    fn answer(&self, certified: bool) -> NearestPoint<D> {
+        NearestPoint {
+            t: self.t,
+            point: self.point,
+            distance: self.distance,
+            certified,
         }
     }
 }
@@ -313,60 +354,61 @@ impl<const D: usize> CurveProjector<D> {
     /// or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
     pub fn nearest(&self, p: &Point<f64, D>) -> Result<NearestPoint<D>, Error> {
         check_query_point(p)?;
-        // The span whose box is nearest first, so that the others can be
-        // skipped by their boxes' distance.
+        let mut best = Best::none();
+        // Every span's ends first: a good bound to skip spans by.
+        for i in 0..self.spans.len() {
+            best.offer(self.candidate(i, p, 0.0));
+            best.offer(self.candidate(i, p, 1.0));
+        }
+        // The span whose box is nearest, then the others unless their box
+        // is farther than the best candidate.
         let first = (0..self.spans.len())
             .map(|i| (i, self.spans[i].distance_bound(p)))
             .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a })
             .0;
-        let start = &self.spans[first];
-        let (point, distance) = start.candidate(p, 0.0);
-        let mut best = Best {
-            t: start.parameter(0.0),
-            point,
-            distance,
-        };
         self.search(first, p, &mut best);
         for (i, span) in self.spans.iter().enumerate() {
-            if i != first && span.distance_bound(p) * (1.0 - 8.0 * f64::EPSILON) <= best.distance
-            {
+            if i != first && span.distance_bound(p) * (1.0 - 8.0 * f64::EPSILON) <= best.distance {
                 self.search(i, p, &mut best);
             }
         }
-        Ok(NearestPoint {
-            t: best.t,
-            point: best.point,
-            distance: best.distance,
-            certified: true,
-        })
+        // Polish the winner if it is a root (a span end is exact).
+        let (i, s) = best.at;
+        if s > 0.0 && s < 1.0 {
+            let polished = self.spans[i].polish(p, s);
+            if polished != s {
+                best.offer(self.candidate(i, p, polished));
+            }
+        }
+        Ok(best.answer(true))
     }
 
-    /// Offers span `i`'s ends and critical points to `best`.
-    fn search(&self, i: usize, p: &Point<f64, D>, best: &mut Best<D>) {
+    /// The candidate at the local parameter `s` of span `i`.
+    fn candidate(&self, i: usize, p: &Point<f64, D>, s: f64) -> Best<D> {
         let span = &self.spans[i];
-        let mut offer = |s: f64| {
-            let (point, distance) = span.candidate(p, s);
-            best.offer(span.parameter(s), point, distance);
-        };
-        offer(0.0);
-        offer(1.0);
-        span.with_condition(p, |g, err| {
+        let (point, distance) = span.candidate(p, s);
+        Best {
+            t: span.parameter(s),
+            point,
+            distance,
+            at: (i, s),
+        }
+    }
+
+    /// Offers span `i`'s critical points (the roots of its condition
+    /// polynomial) to `best`.
+    fn search(&self, i: usize, p: &Point<f64, D>, best: &mut Best<D>) {
+        self.spans[i].with_condition(p, |g, err| {
             if g.is_empty() {
                 return;
             }
-            let mut root_at = |s: f64| {
-                offer(s);
-                let polished = span.polish(p, s);
-                if polished != s {
-                    offer(polished);
-                }
-            };
+            let mut offer = |s: f64| best.offer(self.candidate(i, p, s));
             find_roots_to(g, err, CANDIDATE_WIDTH, |root| match root {
-                Root::At(s) => root_at(s),
+                Root::At(s) => offer(s),
                 Root::Flat { from, to } => {
-                    root_at(from);
-                    root_at(0.5 * (from + to));
-                    root_at(to);
+                    offer(from);
+                    offer(0.5 * (from + to));
+                    offer(to);
                 }
             });
         });
@@ -404,7 +446,7 @@ fn check_query_point<const D: usize>(p: &Point<f64, D>) -> Result<(), Error> {
     match p
         .coords
         .iter()
-        .position(|c| !(c.abs() <= crate::MAX_COORDINATE))
+        .position(|c| !c.is_finite() || c.abs() > crate::MAX_COORDINATE)
     {
         Some(coordinate) => Err(Error::InvalidQueryPoint {
             coordinate,
@@ -470,16 +512,18 @@ fn sampled_nearest<C: Curve<D> + ?Sized, const D: usize>(
     minima.sort_by(|&i, &j| distances[i].total_cmp(&distances[j]));
     minima.truncate(FALLBACK_MINIMA);
 
-    let mut best = Best {
-        t: a,
-        point: point_at(a)?,
-        distance: distances[0],
-    };
+    let mut best = Best::none();
     let mut offer = |t: f64| -> Result<(), Error> {
-        let c = point_at(t)?;
-        best.offer(t, c, (c - p).norm());
+        let point = point_at(t)?;
+        best.offer(Best {
+            t,
+            point,
+            distance: (point - p).norm(),
+            at: (0, t),
+        });
         Ok(())
     };
+    offer(a)?;
     offer(b)?;
     // f = (C − P)·C′ rises through a minimum: bisect its sign change.
     let slope = |t: f64| {
@@ -506,12 +550,7 @@ fn sampled_nearest<C: Curve<D> + ?Sized, const D: usize>(
         offer(lo)?;
         offer(hi)?;
     }
-    Ok(NearestPoint {
-        t: best.t,
-        point: best.point,
-        distance: best.distance,
-        certified: false,
-    })
+    Ok(best.answer(false))
 }
 
 #[cfg(test)]
@@ -560,7 +599,11 @@ mod tests {
     fn homogeneous_numerator_is_translation_free() {
         // N = X′W − XW′ has no P in it: the same for the curve moved.
         let moved = |dx: f64| {
-            let pts = vec![Point2::new(dx, 0.0), Point2::new(1.0 + dx, 1.0), Point2::new(dx, 1.0)];
+            let pts = vec![
+                Point2::new(dx, 0.0),
+                Point2::new(1.0 + dx, 1.0),
+                Point2::new(dx, 1.0),
+            ];
             SpanForm::new(RationalBezierSpan {
                 knots: (0.0, 1.0),
                 curve: RationalBezier::new(pts, vec![1.0, 0.5, 2.0]).unwrap(),
