@@ -1,46 +1,6 @@
 //! Arc length `L = ∫ |C′(t)| dt` to a requested tolerance, with a rigorous
-//! bracket and an error estimate.
-//!
-//! # Method
-//! Each rational Bézier span is integrated in its own parameter `s ∈ [0, 1]`
-//! (the length does not depend on the parametrization) by adaptive
-//! Gauss–Legendre quadrature: a piece `[s₀, s₁]` whose 16-point value is
-//! `G` is split in halves with values `G_l`, `G_r`; the piece is accepted,
-//! contributing `G_l + G_r`, when `|G_l + G_r − G|` is within its share of
-//! the tolerance and `G_l + G_r` lies in the piece's rigorous bracket
-//! (below); otherwise each half is treated the same way (at most 40 levels
-//! deep, at most 2¹⁸ pieces in all). The speed `|C′(s)|` is evaluated from
-//! the span's own homogeneous coefficients (de Casteljau and the quotient
-//! rule), so its rounding does not grow with the depth. Comparing a rule
-//! with itself on the halves (rather than with a lower-order rule at
-//! nearly the same nodes) samples the integrand at new points, so a peak of
-//! the speed that one set of nodes misses shows up as a difference.
-//!
-//! # What is rigorous and what is estimated
-//! - **Rigorous** (up to a rounding margin that is added): `lower ≤ L ≤
-//!   upper`. For a piece of a rational Bézier curve with positive weights,
-//!   the chord is at most the arc length, which is at most the length of
-//!   the piece's control polygon: de Casteljau subdivision (on homogeneous
-//!   points, each projected point lies on the segment between the two it
-//!   combines) never lengthens the polygon, and the polygons converge to the
-//!   curve (Farin, *Curves and Surfaces for CAGD*, §4.4 and ch. 13). `lower`
-//!   and `upper` are the sums over the final pieces.
-//! - **Estimated**: `error_bound` is `Σ |G_l + G_r − G|` over the pieces
-//!   (the error of the whole-piece value, which for a smooth integrand
-//!   greatly exceeds that of the reported two-halves one) plus a bound on the
-//!   rounding of the evaluation, capped by the rigorous
-//!   `max(length − lower, upper − length)`. It is at most the requested
-//!   tolerance unless the depth or piece limit was reached. An integrand
-//!   that fools both rules at once on a piece (a feature narrower than the
-//!   nodes' spacing) also lies outside the piece's bracket only if it is
-//!   large, so the estimate is trustworthy for curves whose spans are not
-//!   pathologically wiggly; the bracket always holds.
-//!
-//! Curves without spans (a user's own [`Curve`]) get the same adaptive
-//! quadrature on their domain, starting from 16 equal pieces, with
-//! `derivative` as the integrand: `lower` (the sum of chords) is rigorous
-//! up to the curve's own evaluation, `upper` is infinite, and
-//! `error_bound` is the estimate alone.
+//! bracket and an error estimate: the method and what is rigorous are in the
+//! docs of [`ArcLength`].
 
 use super::RationalBezierSpan;
 use super::homogeneous::{Homogeneous, project, project_with_derivative};
@@ -72,9 +32,69 @@ const SUM_ROUNDING: f64 = 24.0 * f64::EPSILON;
 /// Pieces a curve without spans starts from.
 const FALLBACK_PIECES: usize = 16;
 
-/// The arc length of a curve and how well it is known; see
-/// [`Curve::arc_length`] and the [module docs](self) for what is rigorous
-/// (`lower`, `upper`) and what is estimated (`error_bound`).
+/// The arc length of a curve and how well it is known ([`Curve::arc_length`]):
+/// `lower` and `upper` are rigorous, `error_bound` is an estimate.
+///
+/// # Method
+/// Each rational Bézier span is integrated in its own parameter `s ∈ [0, 1]`
+/// (the length does not depend on the parametrization) by adaptive
+/// Gauss–Legendre quadrature: a piece `[s₀, s₁]` whose 16-point value is
+/// `G` is split in halves with values `G_l`, `G_r`; the piece is accepted,
+/// contributing `G_l + G_r`, when `|G_l + G_r − G|` is within its share of
+/// the tolerance and `G_l + G_r` lies in the piece's rigorous bracket
+/// (below); otherwise each half is treated the same way (at most 40 levels
+/// deep, at most 2¹⁸ pieces in all). The speed `|C′(s)|` is evaluated from
+/// the span's own homogeneous coefficients (de Casteljau and the quotient
+/// rule), so its rounding does not grow with the depth. Comparing a rule
+/// with itself on the halves (rather than with a lower-order rule at
+/// nearly the same nodes) samples the integrand at new points, so a peak of
+/// the speed that one set of nodes misses shows up as a difference.
+///
+/// # What is rigorous and what is estimated
+/// - **Rigorous** (up to a rounding margin that is added): `lower ≤ L ≤
+///   upper`. For a piece of a rational Bézier curve with positive weights,
+///   the chord is at most the arc length, which is at most the length of
+///   the piece's control polygon: de Casteljau subdivision (on homogeneous
+///   points, each projected point lies on the segment between the two it
+///   combines) never lengthens the polygon (triangle inequality), and the
+///   polygons converge to the curve. `lower` and `upper` are the sums over
+///   the final pieces, widened by a bound on the rounding of their
+///   vertices.
+/// - **Estimated**: `error_bound` is `Σ |G_l + G_r − G|` over the pieces
+///   (the error of the whole-piece value, which for a smooth integrand
+///   greatly exceeds that of the reported two-halves one) plus a bound on the
+///   rounding of the evaluation, capped by the rigorous
+///   `max(length − lower, upper − length)`. It is at most the requested
+///   tolerance unless the depth or piece limit was reached. A feature of
+///   the speed narrower than the nodes' spacing on both the piece and its
+///   halves goes unseen unless it pushes the value out of the piece's
+///   bracket, so the estimate is trustworthy for curves whose spans are not
+///   pathologically wiggly; the bracket always holds.
+///
+/// Curves without spans (a user's own [`Curve`]) get the same adaptive
+/// quadrature on their domain, starting from 16 equal pieces, with
+/// `derivative` as the integrand: `lower` (the sum of chords) is rigorous
+/// up to the curve's own evaluation, `upper` is infinite, and
+/// `error_bound` is the estimate alone.
+///
+/// ```
+/// use revolve::Curve;
+/// use revolve::curve::RationalBezier;
+/// use revolve::nalgebra::Point2;
+///
+/// // A quarter of the circle of radius 3 is 3π/2 long.
+/// let h = std::f64::consts::FRAC_1_SQRT_2;
+/// let quarter = RationalBezier::new(
+///     vec![Point2::new(3.0, 0.0), Point2::new(3.0, 3.0), Point2::new(0.0, 3.0)],
+///     vec![1.0, h, 1.0],
+/// )?;
+/// let arc = quarter.arc_length(1e-10)?;
+/// let exact = 1.5 * std::f64::consts::PI;
+/// assert!((arc.length - exact).abs() <= arc.error_bound && arc.error_bound <= 1e-10);
+/// // The bracket: chords below, control polygons above.
+/// assert!(arc.lower <= exact && exact <= arc.upper && arc.upper <= 6.0 + 1e-12);
+/// # Ok::<(), revolve::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArcLength {
     /// The length: the sum of 16-point Gauss–Legendre values over the

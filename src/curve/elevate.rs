@@ -2,7 +2,7 @@
 //!
 //! A polynomial of degree `n` is also one of degree `n + k`. In Bernstein
 //! form its coefficients of degree `n + k` are (Farin, *Curves and Surfaces
-//! for CAGD*, §6.1, the `k`-fold elevation formula)
+//! for CAGD*, degree elevation repeated `k` times in one formula)
 //!
 //! ```text
 //! Qᵢ = Σⱼ C(n, j)·C(k, i − j) / C(n + k, i) · Pⱼ,   i = 0 … n + k,
@@ -13,51 +13,9 @@
 //! combination of the `Pⱼ`: the computation is stable, and the new points
 //! stay in the old points' box.
 //!
-//! # Splines: how the elevated control points are found
-//!
-//! A B-spline of degree `p` whose interior knot `u` has multiplicity `m` is
-//! `C^{p−m}` there. Elevated to degree `q = p + k` it is the same curve, still
-//! `C^{p−m} = C^{q−(m+k)}`: it lies in the spline space of degree `q` whose
-//! interior knots are the old ones, each repeated `k` more times.
-//!
-//! The ends of the domain `[a, b] = [t_p, t_n]` get multiplicity `q + 1`
-//! (clamped ends; knots beyond the domain are dropped). For a clamped
-//! spline, the usual case (and every NURBS conic), that is again "every
-//! knot `k` more times". For the course framework's uniform knots, whose
-//! knots beyond the domain shape only the control polygon, raising those
-//! knots too would move `t_q` and `t_n` and change the domain, and keeping
-//! them makes the end control points extrapolations that can leave the
-//! control points' hull (and, for rational splines, make weights
-//! negative). Clamped ends avoid both: the result is the old spline with
-//! `a` and `b` inserted to full multiplicity (Boehm's insertion, a corner
-//! cutting) and then elevated as a clamped spline, whose new control points
-//! are convex combinations of the old (degree elevation is a corner
-//! cutting too; Prautzsch & Piper, *A fast algorithm to raise the degree of
-//! spline curves*, CAGD 8, 1991). So the new points stay in the old points'
-//! box and new weights are positive.
-//!
-//! Piegl and Tiller's algorithm A5.9 (*The NURBS Book*, §5.5) computes the
-//! new control points by splitting into Bézier pieces, elevating each, and
-//! then removing the knots back to multiplicity `m + k` one at a time,
-//! sequentially along the curve. Here the last step is replaced by its
-//! closed form, the dual functional property of B-splines (de Boor–Fix;
-//! Ramshaw's blossoming principle): the control point `Q′ᵢ` of a spline of
-//! degree `q` with knots `t′` is the blossom of any of its polynomial pieces
-//! on a span inside the support of its basis function,
-//!
-//! ```text
-//! Q′ᵢ = F_l(t′ᵢ₊₁, …, t′ᵢ₊q),   l ∈ [i, i + q],  t′_l < t′_{l+1}.
-//! ```
-//!
-//! The blossom of an elevated Bézier piece at `q` arguments is de Casteljau's
-//! algorithm with one argument per level. So each new control point is
-//! computed independently, from one elevated piece, with no knot-removal
-//! tolerance to choose and no error carried from point to point (sequential
-//! removal accumulates it). Arguments outside the chosen span extrapolate;
-//! of the admissible spans the one with the smallest growth factor
-//! `Π (|1 − u| + |u|)` over the local arguments `u` is used (1 when every
-//! argument is in the span: the ends, interior knots of multiplicity
-//! `≥ p`). Cost: `O(q²)` per control point.
+//! Splines are elevated by blossoming the elevated Bézier pieces at the new
+//! knots: the method, and why it was chosen over knot removal, are in the
+//! docs of [`BSpline::elevate_degree`].
 
 use super::bspline::blossom_in_place;
 use super::homogeneous::Homogeneous;
@@ -321,11 +279,52 @@ impl<const D: usize> BSpline<D> {
     /// parametrization are the same. A clamped spline (every knot `times`
     /// more often) gains `times × (distinct knots − 1)` control points.
     ///
-    /// The new control points are blossoms of the elevated Bézier pieces
-    /// at the new knots (the closed form of the knot removal in Piegl &
-    /// Tiller's A5.9); they are convex combinations of the old ones, kept
-    /// in their box. The module docs of `curve::elevate` give the method
-    /// and why it was chosen.
+    /// # Method
+    /// A B-spline of degree `p` whose interior knot `u` has multiplicity `m` is
+    /// `C^{p−m}` there. Elevated to degree `q = p + k` (`k = times`) it is the same curve, still
+    /// `C^{p−m} = C^{q−(m+k)}`: it lies in the spline space of degree `q` whose
+    /// interior knots are the old ones, each repeated `k` more times.
+    ///
+    /// The ends of the domain `[a, b] = [t_p, t_n]` get multiplicity `q + 1`
+    /// (clamped ends; knots beyond the domain are dropped). For a clamped
+    /// spline, the usual case (and every NURBS conic), that is again "every
+    /// knot `k` more times". For the course framework's uniform knots, whose
+    /// knots beyond the domain shape only the control polygon, raising those
+    /// knots too would move `t_q` and `t_n` and change the domain, and keeping
+    /// them makes the end control points extrapolations that can leave the
+    /// control points' hull (and, for rational splines, make weights
+    /// negative). Clamped ends avoid both: the result is the old spline with
+    /// `a` and `b` inserted to full multiplicity (Boehm's insertion, a corner
+    /// cutting) and then elevated as a clamped spline, whose new control points
+    /// are convex combinations of the old (degree raising of splines is a
+    /// positive process: Cohen, Lyche & Schumaker, *Algorithms for
+    /// degree-raising of splines*, ACM TOG 4, 1985; Prautzsch & Piper, *A fast
+    /// algorithm to raise the degree of spline curves*, CAGD 8, 1991; the unit
+    /// test `elevated_points_are_in_the_old_range` checks it). So the new
+    /// points stay in the old points' box and new weights are positive.
+    ///
+    /// Piegl and Tiller's algorithm A5.9 (*The NURBS Book*, §5.5) computes the
+    /// new control points by splitting into Bézier pieces, elevating each, and
+    /// then removing the knots back to multiplicity `m + k` one at a time,
+    /// sequentially along the curve. Here the last step is replaced by its
+    /// closed form, the dual functional property of B-splines (de Boor–Fix;
+    /// Ramshaw's blossoming principle): the control point `Q′ᵢ` of a spline of
+    /// degree `q` with knots `t′` is the blossom of any of its polynomial pieces
+    /// on a span inside the support of its basis function,
+    ///
+    /// ```text
+    /// Q′ᵢ = F_l(t′ᵢ₊₁, …, t′ᵢ₊q),   l ∈ [i, i + q],  t′_l < t′_{l+1}.
+    /// ```
+    ///
+    /// The blossom of an elevated Bézier piece at `q` arguments is de Casteljau's
+    /// algorithm with one argument per level. So each new control point is
+    /// computed independently, from one elevated piece, with no knot-removal
+    /// tolerance to choose and no error carried from point to point (sequential
+    /// removal accumulates it). Arguments outside the chosen span extrapolate;
+    /// of the admissible spans the one with the smallest growth factor
+    /// `Π (|1 − u| + |u|)` over the local arguments `u` is used (1 when every
+    /// argument is in the span: the ends, interior knots of multiplicity
+    /// `≥ p`). Cost: `O(q²)` per control point.
     ///
     /// ```
     /// use revolve::{BSpline, Curve};

@@ -1,54 +1,7 @@
-//! The nearest point of a curve to a given point, certified global.
-//!
-//! # The condition
-//! A point `C(t)` nearest to `P` is an end of the domain or a critical point
-//! of the squared distance, where `f(t) = (C(t) − P)·C′(t) = 0`. On a
-//! rational Bézier span `C = X/W` (homogeneous numerator `X = Σ wᵢPᵢBᵢⁿ`,
-//! weight `W = Σ wᵢBᵢⁿ > 0`) write `Y = X − P·W = Σ wᵢ(Pᵢ − P)Bᵢⁿ`; then
-//! `C − P = Y/W` and `C′ = (X′W − XW′)/W² = (Y′W − YW′)/W²`, so
-//!
-//! ```text
-//! W³·f = g = Y · N,   N = X′W − XW′ = Σₖ dₖ Bₖ^{2n−2},
-//! dₖ = Σ_{i+j=k+1, i>j} C(n,i)·C(n,j)·(i − j)/C(2n−2,k) · wᵢwⱼ(Pᵢ − Pⱼ),
-//! ```
-//!
-//! a polynomial of degree `3n − 2` with the same roots as `f` (the degree
-//! `2n − 1` term of `N` cancels; Farin, *Curves and Surfaces for CAGD*,
-//! §13.5, and Sederberg's *CAGD* notes, §2.12). `N` does not depend on `P`
-//! and is computed once per span. With equal weights `N = C′` (degree
-//! `n − 1`, coefficients `n(Pᵢ₊₁ − Pᵢ)`) and `g = (C − P)·C′` has degree
-//! `2n − 1`. The product is formed in the Bernstein basis,
-//! `gᵣ = Σ_{i+k=r} C(n,i)C(m,k)/C(n+m,r) · yᵢ·dₖ`, with a bound on its
-//! rounding error (below), and every root of `g` in the span is isolated by
-//! [`find_roots_to`](crate::roots::find_roots_to), which misses none for
-//! coefficients within that bound, and refined there to double precision;
-//! the span ends are candidates too; the nearest
-//! candidate of all wins, and is then polished by Newton's method on the
-//! unsquared condition `f` (the curve's own derivatives, not the formed
-//! polynomial), the polished value kept if it is nearer. (Polishing only the
-//! winner is enough: near a critical point the distance is flat to second
-//! order, so an unpolished root's distance is already within rounding.)
-//!
-//! # The rounding bound
-//! `yᵢ = wᵢ(Pᵢ − P)` carries `2ε` relative error, each `dₖ` at most
-//! `(n + 8)ε·Mₖ` where `Mₖ` bounds its terms' magnitudes (componentwise),
-//! and the products, the `D` dot-product terms, the binomial ratios and the
-//! sum over `i + k = r` add `(n + D + 5)ε`: every `gᵣ` is within
-//! `(2n + D + 20)ε · Σ_{i+k=r} β·|yᵢ|·Mₖ ≤ (2n + D + 20)ε · maxᵢ‖yᵢ‖∞ ·
-//! maxₖ‖Mₖ‖₁` of the exact value (the weights `β` of one `r` sum to one;
-//! the exact value is the polynomial of the exact `P` and control points,
-//! with the span's weights scaled so the largest is 1).
-//!
-//! # Why the answer is global
-//! The nearest point is an end or a root of `g` on some span; no root is
-//! missed, spans are skipped only when the distance from `P` to their
-//! control points' box (which holds the span: positive weights) exceeds the
-//! best distance found. Near a double root (the point is a centre of
-//! curvature) the root is reported within the coefficients' noise, where
-//! the distance is flat to second order; an interval where `g` vanishes
-//! within its error (`P` at the centre of a circular arc: every point is
-//! nearest) gives its ends and midpoint as candidates. So the distance
-//! returned exceeds the true minimum by rounding only.
+//! The nearest point of a curve to a given point, certified global: the
+//! method, its rounding bound and why the answer is global are in the docs
+//! of [`CurveProjector`]; curves without spans get a sampled answer (see
+//! [`Curve::nearest_point`]).
 
 use super::{RationalBezier, RationalBezierSpan};
 use crate::bernstein::binomial_row;
@@ -78,6 +31,20 @@ const FALLBACK_MINIMA: usize = 16;
 /// points are equally near (the centre of a circle) any of them is a right
 /// answer; the one with the smallest computed distance, then the smallest
 /// `t`, is returned.
+///
+/// ```
+/// use revolve::{Bezier, Curve};
+/// use revolve::nalgebra::Point2;
+///
+/// // The parabola y = x² on [0, 1]; from (0, 1) the nearest point has
+/// // x² = 1/2 (the distance² x² + (x² − 1)² is least there).
+/// let parabola = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.5, 0.0), Point2::new(1.0, 1.0)])?;
+/// let near = parabola.nearest_point(&Point2::new(0.0, 1.0))?;
+/// assert!((near.point.x - 0.5f64.sqrt()).abs() < 1e-15);
+/// assert!((near.distance - 0.75f64.sqrt()).abs() < 1e-15);
+/// assert!(near.certified && (near.t - 0.5f64.sqrt()).abs() < 1e-15);
+/// # Ok::<(), revolve::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NearestPoint<const D: usize> {
     /// The parameter of the nearest point, in the curve's domain.
@@ -95,9 +62,62 @@ pub struct NearestPoint<const D: usize> {
 
 /// A curve prepared for many nearest-point queries: its rational Bézier
 /// spans with the `P`-independent part of each span's condition
-/// polynomial (the derivative numerator `N = X′W − XW′`, see the
-/// [module docs](self)) computed once. [`Curve::nearest_point`] builds one
-/// per call; keep one to answer many queries on the same curve.
+/// polynomial (the derivative numerator `N = X′W − XW′`, below) computed
+/// once. [`Curve::nearest_point`] builds one per call; keep one to answer
+/// many queries on the same curve.
+///
+/// # The condition
+/// A point `C(t)` nearest to `P` is an end of the domain or a critical point
+/// of the squared distance, where `f(t) = (C(t) − P)·C′(t) = 0`. On a
+/// rational Bézier span `C = X/W` (homogeneous numerator `X = Σ wᵢPᵢBᵢⁿ`,
+/// weight `W = Σ wᵢBᵢⁿ > 0`) write `Y = X − P·W = Σ wᵢ(Pᵢ − P)Bᵢⁿ`; then
+/// `C − P = Y/W` and `C′ = (X′W − XW′)/W² = (Y′W − YW′)/W²`, so
+///
+/// ```text
+/// W³·f = g = Y · N,   N = X′W − XW′ = Σₖ dₖ Bₖ^{2n−2},
+/// dₖ = Σ_{i+j=k+1, i>j} C(n,i)·C(n,j)·(i − j)/C(2n−2,k) · wᵢwⱼ(Pᵢ − Pⱼ),
+/// ```
+///
+/// a polynomial of degree `3n − 2` with the same roots as `f`. The formula
+/// for `N` follows from `Bᵢⁿ′Bⱼⁿ − BᵢⁿBⱼⁿ′ = C(n,i)C(n,j)(i − j)/C(2n−2,i+j−1)
+/// · B_{i+j−1}^{2n−2}` (differentiate `sⁱ(1 − s)ⁿ⁻ⁱ`; the degree `2n − 1`
+/// terms cancel), summed with the pairs `(i, j)`, `(j, i)` together, which
+/// removes `P` (rational Bézier curves: Farin, *Curves and Surfaces for
+/// CAGD*, the chapter on rational Bézier curves). `N` does not depend on `P`
+/// and is computed once per span. With equal weights `N = C′` (degree
+/// `n − 1`, coefficients `n(Pᵢ₊₁ − Pᵢ)`) and `g = (C − P)·C′` has degree
+/// `2n − 1`. The product is formed in the Bernstein basis,
+/// `gᵣ = Σ_{i+k=r} C(n,i)C(m,k)/C(n+m,r) · yᵢ·dₖ`, with a bound on its
+/// rounding error (below), and every root of `g` in the span is isolated by
+/// [`find_roots_to`](crate::roots::find_roots_to), which misses none for
+/// coefficients within that bound, and refined there to double precision;
+/// the span ends are candidates too; the nearest candidate of all wins, and
+/// is then polished by Newton's method on the
+/// unsquared condition `f` (the curve's own derivatives, not the formed
+/// polynomial), the polished value kept if it is nearer. (Polishing only the
+/// winner is enough: near a critical point the distance is flat to second
+/// order, so an unpolished root's distance is already within rounding.)
+///
+/// # The rounding bound
+/// `yᵢ = wᵢ(Pᵢ − P)` carries `2ε` relative error, each `dₖ` at most
+/// `(n + 8)ε·Mₖ` where `Mₖ` bounds its terms' magnitudes (componentwise),
+/// and the products, the `D` dot-product terms, the binomial ratios and the
+/// sum over `i + k = r` add `(n + D + 5)ε`: every `gᵣ` is within
+/// `(2n + D + 20)ε · Σ_{i+k=r} β·|yᵢ|·Mₖ ≤ (2n + D + 20)ε · maxᵢ‖yᵢ‖∞ ·
+/// maxₖ‖Mₖ‖₁` of the exact value (the weights `β` of one `r` sum to one;
+/// the exact value is the polynomial of the exact `P` and control points,
+/// with the span's weights scaled so the largest is 1).
+///
+/// # Why the answer is global
+/// The nearest point is an end or a root of `g` on some span; no root is
+/// missed, spans are skipped only when the distance from `P` to their
+/// control points' box (which holds the span: positive weights) exceeds the
+/// best distance found. Near a double root (the point is a centre of
+/// curvature) the root is reported within the coefficients' noise, where
+/// the distance is flat to second order; an interval where `g` vanishes
+/// within its error (`P` at the centre of a circular arc: every point is
+/// nearest) gives its ends and midpoint as candidates. So the distance
+/// returned exceeds the true minimum by rounding only.
 ///
 /// ```
 /// use revolve::{BSpline, Curve};
@@ -346,8 +366,8 @@ impl<const D: usize> CurveProjector<D> {
         })
     }
 
-    /// The nearest point of the curve to `p`, certified global (see the
-    /// [module docs](self) for the method and its guarantee).
+    /// The nearest point of the curve to `p`, certified global (the method
+    /// and its guarantee are in the [type's docs](CurveProjector)).
     ///
     /// # Errors
     /// [`Error::InvalidQueryPoint`] for a coordinate that is NaN, infinite
