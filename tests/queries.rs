@@ -270,6 +270,34 @@ fn nearest_point_on_random_splines_and_rational_curves() {
     }
 }
 
+/// High degrees: the condition polynomial has degree `2n − 1` (39 for
+/// `n = 20`, the degree the hard cases of DESIGN.md §5 go up to) or
+/// `3n − 2` for rational curves.
+#[test]
+fn nearest_point_at_high_degree() {
+    let mut rng = Rng(0x41);
+    for degree in [10, 15, 20] {
+        for _ in 0..3 {
+            let pts = random_points::<2>(&mut rng, degree + 1);
+            let p = Point2::new(rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
+            let curve = Bezier::new(pts.clone()).unwrap();
+            let near = curve.nearest_point(&p).unwrap();
+            check_nearest(
+                &curve,
+                &p,
+                &near,
+                scale(&pts, &p),
+                &format!("degree {degree}"),
+            );
+            let weights = random_weights(&mut rng, degree + 1);
+            let rational = RationalBezier::new(pts.clone(), weights).unwrap();
+            let near = rational.nearest_point(&p).unwrap();
+            let what = format!("rational degree {degree}");
+            check_nearest(&rational, &p, &near, scale(&pts, &p), &what);
+        }
+    }
+}
+
 /// Curves with many local minima of the distance: a zigzag Bézier of degree
 /// 12 seen from above its middle (every crest is a local minimum), and a
 /// B-spline spiral around the query point (every turn is one). A local

@@ -532,6 +532,10 @@ fn sampled_length<C: Curve<D> + ?Sized, const D: usize>(
     for i in 0..FALLBACK_PIECES {
         adaptive.start((at(i), at(i + 1)), (ends[i], ends[i + 1]), &mut tally)?;
     }
+    if !tally.length().is_finite() {
+        // Speeds near the largest f64 summed beyond it.
+        return Err(Error::CurveNotFinite { t: a });
+    }
     let (evaluation, margin) = (SUM_ROUNDING * tally.length(), SUM_ROUNDING * tally.lower);
     Ok(finish(tally, evaluation, margin))
 }

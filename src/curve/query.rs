@@ -180,7 +180,8 @@ impl<const D: usize> SpanForm<D> {
             for i in 1..=n {
                 for j in 0..i.min(2 * n - i) {
                     let k = i + j - 1;
-                    let c = row_n[i] * row_n[j] * (i - j) as f64 / row_m[k] * w[i] * w[j];
+                    // Divided before multiplying: no overflow at high degree.
+                    let c = row_n[i] / row_m[k] * row_n[j] * (i - j) as f64 * w[i] * w[j];
                     let term = (points[i] - points[j]) * c;
                     d[k] += term;
                     m[k] += term.abs();
@@ -193,7 +194,8 @@ impl<const D: usize> SpanForm<D> {
         let product = (0..=n)
             .flat_map(|i| {
                 let (row_n, row_m, row_nm) = (&row_n, &row_m, &row_nm);
-                (0..=mdeg).map(move |k| row_n[i] * row_m[k] / row_nm[i + k])
+                // C(n,i)/C(n+m,i+k) ≤ 1/C(m,k): divided first, no overflow.
+                (0..=mdeg).map(move |k| row_n[i] / row_nm[i + k] * row_m[k])
             })
             .collect();
         SpanForm {
