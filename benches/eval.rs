@@ -10,6 +10,11 @@
 //! (the CPU may overlap neighbouring calls), as in a sampling loop.
 //! `eval_overhead/t_lookup` measures the parameter lookup alone.
 //!
+//! `nearest_point`: one certified nearest-point query per iteration, the
+//! query point cycling through 1024 pseudo-random points around the curve;
+//! `projector/…` on a prepared [`CurveProjector`], `method/…` through
+//! [`Curve::nearest_point`] (which prepares the spans on every call).
+//!
 //! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
 
 #[path = "../tests/common/mod.rs"]
@@ -21,8 +26,9 @@ use std::time::Duration;
 use common::{Rng, helix_points};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
-use revolve::nalgebra::Vector3;
-use revolve::{BSpline, Bezier, Curve};
+use revolve::curve::RationalBezier;
+use revolve::nalgebra::{Point, Point2, Vector3};
+use revolve::{BSpline, Bezier, Curve, CurveProjector};
 
 /// Number of precomputed parameters; a power of two so that cycling is a mask.
 const N_T: usize = 1024;
@@ -241,8 +247,90 @@ fn algorithms(c: &mut Criterion) {
     group.finish();
 }
 
+/// 1024 pseudo-random points in the curve's box grown by half its size
+/// on every side.
+fn query_points<const D: usize>(curve: &impl Curve<D>, seed: u64) -> Vec<Point<f64, D>> {
+    let samples = curve.discretize(256);
+    let (mut lo, mut hi) = (samples[0].point, samples[0].point);
+    for s in &samples {
+        lo = lo.inf(&s.point);
+        hi = hi.sup(&s.point);
+    }
+    let margin = (hi - lo) * 0.5;
+    let mut rng = Rng(seed);
+    (0..N_T)
+        .map(|_| {
+            Point::from(std::array::from_fn(|c| {
+                rng.range(lo[c] - margin[c], hi[c] + margin[c])
+            }))
+        })
+        .collect()
+}
+
+/// Benches one nearest-point query per iteration on `projector`.
+fn bench_nearest<const D: usize>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: &str,
+    projector: &CurveProjector<D>,
+    points: &[Point<f64, D>],
+) {
+    group.bench_function(BenchmarkId::new("projector", id), |b| {
+        let projector = black_box(projector);
+        let mut i = 0;
+        b.iter(|| {
+            i = (i + 1) & MASK;
+            projector.nearest(black_box(&points[i]))
+        });
+    });
+}
+
+fn nearest_point(c: &mut Criterion) {
+    let spline = cubic_bspline(10);
+    let bezier = bezier_curve(7);
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let quarter = RationalBezier::new(
+        vec![
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(0.0, 1.0),
+        ],
+        vec![1.0, h, 1.0],
+    )
+    .expect("valid quarter circle");
+    let spline_points = query_points(&spline, 21);
+    let mut group = c.benchmark_group("nearest_point");
+    group.throughput(Throughput::Elements(1));
+    bench_nearest(
+        &mut group,
+        "cubic_bspline_10",
+        &CurveProjector::new(&spline).expect("curve with spans"),
+        &spline_points,
+    );
+    bench_nearest(
+        &mut group,
+        "bezier_7",
+        &CurveProjector::new(&bezier).expect("curve with spans"),
+        &query_points(&bezier, 22),
+    );
+    bench_nearest(
+        &mut group,
+        "rational_quarter_circle",
+        &CurveProjector::new(&quarter).expect("curve with spans"),
+        &query_points(&quarter, 23),
+    );
+    group.bench_function(BenchmarkId::new("method", "cubic_bspline_10"), |b| {
+        let spline = black_box(&spline);
+        let mut i = 0;
+        b.iter(|| {
+            i = (i + 1) & MASK;
+            spline.nearest_point(black_box(&spline_points[i]))
+        });
+    });
+    group.finish();
+}
+
 fn config() -> Criterion {
-    // 37 benches; this keeps a full run around two and a half minutes.
+    // 41 benches; this keeps a full run around two and three quarter minutes.
     Criterion::default()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(2))
@@ -252,6 +340,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = overhead, bezier, bspline, algorithms
+    targets = overhead, bezier, bspline, algorithms, nearest_point
 }
 criterion_main!(benches);

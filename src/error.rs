@@ -251,6 +251,30 @@ pub enum Error {
         /// The highest order supported.
         max: usize,
     },
+    // -- Added for issue 17 by h-queries: degree elevation, curve queries. --
+    /// Degree elevation would make the degree `degree + times` larger than
+    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE) (or
+    /// overflow).
+    ElevationTooHigh {
+        /// The curve's degree.
+        degree: usize,
+        /// How many times elevation was asked for.
+        times: usize,
+        /// The largest degree elevation may produce.
+        max: usize,
+    },
+    /// A query point (nearest point) has a coordinate that is NaN,
+    /// infinite or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidQueryPoint {
+        /// Index of the coordinate.
+        coordinate: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// The operation needs a curve with rational Bézier spans (one whose
+    /// [`Curve::rational_bezier_spans`](crate::Curve::rational_bezier_spans)
+    /// is `Some`).
+    NotPiecewiseRational,
 }
 
 impl fmt::Display for Error {
@@ -445,6 +469,23 @@ impl fmt::Display for Error {
             Error::DerivativeOrderTooHigh { order, max } => write!(
                 f,
                 "derivative of order {order} asked for; the highest supported order is {max}"
+            ),
+            Error::ElevationTooHigh { degree, times, max } => write!(
+                f,
+                "elevating degree {degree} by {times} would exceed the largest supported \
+                 degree {max}"
+            ),
+            Error::InvalidQueryPoint { coordinate, value } => write!(
+                f,
+                "query point coordinate {coordinate} is {}; it must be finite and at most {} \
+                 in magnitude",
+                Num(value),
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::NotPiecewiseRational => write!(
+                f,
+                "this needs a curve with rational Bézier spans (Curve::rational_bezier_spans), \
+                 as Bezier, BSpline and RationalBezier are"
             ),
         }
     }

@@ -97,8 +97,8 @@ pub const MAX_COORDINATE: f64 = 1e100;
 
 pub use aabb::Aabb;
 pub use curve::{
-    BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening, MAX_DERIVATIVE, MAX_SEGMENTS,
-    Nurbs, RationalBezier, RationalBezierSpan,
+    ArcLength, BSpline, Bezier, BezierSpan, Curve, CurveProjector, CurveSample, Flattening,
+    MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier, RationalBezierSpan,
 };
 pub use error::Error;
 pub use ray::newton::{NewtonIntersector, NewtonReport};

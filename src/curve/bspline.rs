@@ -532,12 +532,25 @@ pub(crate) fn blossom<T: crate::bernstein::Coefficient>(
 ) -> T {
     with_scratch(p + 1, control[0], |s| {
         s.copy_from_slice(control);
-        for level in 1..=p {
-            let u = if level <= count_a { a } else { b };
-            de_boor_level(knots, p, span, s, u, level);
-        }
-        s[p]
+        blossom_in_place(knots, p, span, s, count_a, a, b)
     })
+}
+
+/// [`blossom`] on control values already in `s` (overwritten).
+pub(crate) fn blossom_in_place<T: crate::bernstein::Coefficient>(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    s: &mut [T],
+    count_a: usize,
+    a: f64,
+    b: f64,
+) -> T {
+    for level in 1..=p {
+        let u = if level <= count_a { a } else { b };
+        de_boor_level(knots, p, span, s, u, level);
+    }
+    s[p]
 }
 
 /// The knot that inserting `t` `times` times into `knots` (degree `degree`,

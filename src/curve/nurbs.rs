@@ -20,7 +20,8 @@ use super::homogeneous::{project, project_with_derivative};
 use super::pieces::PieceTable;
 use super::{
     Homogeneous, MAX_DERIVATIVE, NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain,
-    point_bounds, quotient_rule, tangent_from_derivatives, validate_points, validate_weights,
+    elevate_spline, point_bounds, quotient_rule, tangent_from_derivatives, validate_points,
+    validate_weights,
 };
 use crate::bernstein::{self, lerp};
 use crate::scratch::with_scratch;
@@ -367,6 +368,51 @@ impl<const D: usize> Nurbs<D> {
             self.derivatives(t, out)?;
             Ok(out[order])
         })
+    }
+
+    /// The same curve with its degree raised by `times`: the B-spline
+    /// elevation of [`BSpline::elevate_degree`] run on the homogeneous points
+    /// `(wᵢPᵢ, wᵢ)`, then divided back into points and weights. Every
+    /// interior knot's multiplicity grows by `times`; the ends are clamped
+    /// (full multiplicity), so every new homogeneous point is a convex
+    /// combination of the old ones and the weights stay positive.
+    ///
+    /// # Errors
+    /// [`Error::ElevationTooHigh`] beyond
+    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE); the
+    /// errors of [`new`](Self::new) should rounding break its bounds.
+    ///
+    /// ```
+    /// use revolve::{Curve, Nurbs};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let circle = Nurbs::circle(Point2::origin(), 2.0)?;
+    /// let cubic = circle.elevate_degree(1)?;
+    /// assert_eq!(cubic.degree(), 3);
+    /// for k in 0..=40 {
+    ///     let t = k as f64 / 40.0;
+    ///     assert!((cubic.eval(t).coords.norm() - 2.0).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn elevate_degree(&self, times: usize) -> Result<Nurbs<D>, Error> {
+        let scale = weight_scale(&self.weights);
+        let homogeneous: Vec<Homogeneous<D>> = self
+            .points
+            .iter()
+            .zip(&self.weights)
+            .map(|(p, &w)| Homogeneous::new(p, w / scale))
+            .collect();
+        let (knots, raised) = elevate_spline(self.degree, &self.knots, &homogeneous, times)?;
+        let bounds = point_bounds(&self.points);
+        let (points, weights) = raised
+            .iter()
+            .map(|h| {
+                let p = Point::from(clamp_to_box(h.wp / h.w, bounds));
+                (p, h.w * scale)
+            })
+            .unzip();
+        Nurbs::new(self.degree + times, knots, points, weights)
     }
 
     /// Inserts the knot `t` `times` times (Boehm's algorithm on the
