@@ -331,3 +331,31 @@ fn surfaces_hold_heap_in_proportion_to_their_profiles() {
     let glass = check_heap("wine glass", common::wine_glass, 16 * 1024);
     assert!(vase < glass, "vase {vase}, glass {glass}");
 }
+
+/// Rational revolutions (a NURBS half circle: the unit sphere; a NURBS
+/// circle off the axis: a torus) hold little heap, and intersecting a ray
+/// with them allocates nothing.
+#[test]
+fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
+    use revolve::nalgebra::{Point2, Vector3};
+    use revolve::{Intersect, Nurbs, Ray};
+    use std::f64::consts::FRAC_PI_2;
+    let half = || Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2).unwrap();
+    let ring = || Nurbs::circle(Point2::new(1.0, 0.0), 0.25).unwrap();
+    check_heap("NURBS sphere", half, 5 * 1024);
+    check_heap("NURBS torus", ring, 6 * 1024);
+    let mut rng = common::Rng(23);
+    for surface in [Revolution::new(half()), Revolution::new(ring())] {
+        let bounds = surface.bounds();
+        let mut hits = 0;
+        for _ in 0..500 {
+            let dir: Vector3<f64> = rng.direction();
+            let ray = Ray::new(rng.point_in(&bounds) - dir * 4.0, dir);
+            let mut hit = None;
+            let count = allocations_in(|| hit = surface.intersect(&ray, 0.0, f64::INFINITY));
+            assert_eq!(count, 0, "{ray:?}");
+            hits += usize::from(hit.is_some());
+        }
+        assert!(hits > 100, "only {hits} hits");
+    }
+}
