@@ -47,12 +47,13 @@ use super::SplitDirection;
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves, product_weights};
 use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
-use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm};
+use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm, Unweighted};
 use super::turn_angle::turn_angle;
-use crate::bernstein::{Polynomial, eval_with_derivative};
+use crate::bernstein::{Coefficient, Polynomial, eval_with_derivative};
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
-use crate::{BezierSpan, Tolerance};
+use crate::{RationalBezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
+use nalgebra::{Vector2, Vector3 as Homogeneous2};
 use std::cmp::Ordering::Less;
 
 /// Profiles of more spans than this get no [`MeridianCells`] (its masks and
@@ -92,23 +93,43 @@ const NEWTON_DONE: f64 = 1e-6;
 /// parameter) and still be taken as that root.
 const ROOT_AGREEMENT: f64 = 1e-6;
 
-/// Runs `body` with `span` bound to the coefficients `xs`, `ys` as a
-/// fixed-size [`Fixed`] form when their length is 2 to 6 (degree ≤ 5),
-/// else as [`Slices`].
+/// Runs `body` with `span` bound to the coefficients `xs`, `ys` (and, when
+/// `ws` is `Some`, the weights of a rational span) as a fixed-size
+/// [`Fixed`] form when their length is 2 to 6 (degree ≤ 5), else as
+/// [`Slices`].
 macro_rules! with_span_form {
-    ($xs:expr, $ys:expr, |$span:ident| $body:expr) => {{
-        let (xs, ys): (&[f64], &[f64]) = ($xs, $ys);
-        with_span_form!(@fixed xs, ys, $span, $body, 2, 3, 4, 5, 6)
+    ($xs:expr, $ys:expr, $ws:expr, |$span:ident| $body:expr) => {{
+        let (xs, ys, ws): (&[f64], &[f64], Option<&[f64]>) = ($xs, $ys, $ws);
+        match ws {
+            None => with_span_form!(@fixed xs, ys, Unweighted, $span, $body, 2, 3, 4, 5, 6),
+            Some(ws) => with_span_form!(@rational xs, ys, ws, $span, $body, 2, 3, 4, 5, 6),
+        }
     }};
-    (@fixed $xs:ident, $ys:ident, $span:ident, $body:expr, $($w:literal),*) => {
+    (@fixed $xs:ident, $ys:ident, $ws:expr, $span:ident, $body:expr, $($w:literal),*) => {
         'done: {
             $(
                 if let (Ok(xs), Ok(ys)) = (<&[f64; $w]>::try_from($xs), <&[f64; $w]>::try_from($ys)) {
-                    let $span = Fixed { xs, ys };
+                    let $span = Fixed { xs, ys, ws: $ws };
                     break 'done ($body);
                 }
             )*
-            let $span = Slices { xs: $xs, ys: $ys };
+            let $span = Slices { xs: $xs, ys: $ys, ws: $ws };
+            $body
+        }
+    };
+    (@rational $xs:ident, $ys:ident, $ws:ident, $span:ident, $body:expr, $($w:literal),*) => {
+        'done: {
+            $(
+                if let (Ok(xs), Ok(ys), Ok(ws)) = (
+                    <&[f64; $w]>::try_from($xs),
+                    <&[f64; $w]>::try_from($ys),
+                    <&[f64; $w]>::try_from($ws),
+                ) {
+                    let $span = Fixed { xs, ys, ws };
+                    break 'done ($body);
+                }
+            )*
+            let $span = Slices { xs: $xs, ys: $ys, ws: $ws };
             $body
         }
     };
@@ -202,9 +223,13 @@ pub(crate) struct SpanTable {
     /// The spans each kind of line can meet (profiles of two spans or more,
     /// up to [`MAX_CELL_SPANS`]); rays it cannot place use the groups.
     cells: Option<MeridianCells>,
-    /// `x` and `y` Bernstein coefficients, `degree + 1` per span.
+    /// `x` and `y` Bernstein coefficients, `degree + 1` per span: the
+    /// control points (of a rational span too).
     xs: Vec<f64>,
     ys: Vec<f64>,
+    /// The weights, `degree + 1` per span (the largest of each span 1);
+    /// empty when every span is polynomial.
+    ws: Vec<f64>,
     /// `C(n,i)·C(n,j)/C(2n,i+j)`, row-major `(n + 1) × (n + 1)`.
     weights: Vec<f64>,
     /// Largest `|x|`, and the height range, over all control points.
@@ -334,21 +359,35 @@ impl Query {
 }
 
 impl SpanTable {
-    /// The table for a profile given as Bézier spans (in parameter order, as
-    /// [`Curve::bezier_spans`](crate::Curve::bezier_spans) promises); `None`
-    /// when there are none. Spans of lower degree are raised to the highest.
-    pub(crate) fn new(spans: &[BezierSpan<2>]) -> Option<Self> {
+    /// The table for a profile given as (rational) Bézier spans (in
+    /// parameter order, as
+    /// [`Curve::rational_bezier_spans`](crate::Curve::rational_bezier_spans)
+    /// promises); `None` when there are none. Spans of lower degree are
+    /// raised to the highest.
+    ///
+    /// With positive weights a rational span lies in the convex hull of its
+    /// control points, so the height and radius ranges below hold for it as
+    /// for a polynomial one.
+    pub(crate) fn new(spans: &[RationalBezierSpan<2>]) -> Option<Self> {
         let degree = spans.iter().map(|s| s.curve.degree()).max()?;
         let unit = working_unit(spans);
         let split = refine_spans(spans, degree, unit);
         let spans = &split[..];
+        let rational = spans.iter().any(|s| s.weights.is_some());
         let mut xs = Vec::with_capacity(spans.len() * (degree + 1));
         let mut ys = Vec::with_capacity(xs.capacity());
+        let mut ws = Vec::with_capacity(if rational { xs.capacity() } else { 0 });
         let mut table = Vec::with_capacity(spans.len());
         for s in spans {
             let pts = &s.points[..];
             xs.extend(pts.iter().map(|p| p.x));
             ys.extend(pts.iter().map(|p| p.y));
+            if rational {
+                match &s.weights {
+                    Some(w) => ws.extend_from_slice(w),
+                    None => ws.extend(pts.iter().map(|_| 1.0)),
+                }
+            }
             let (y0, y1) = pts
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
@@ -380,14 +419,17 @@ impl SpanTable {
         let group = group_size(table.len());
         let boxes: Vec<SpanBox> = table.iter().map(|s| SpanBox { y: s.y, r: s.r }).collect();
         let cells = (table.len() > 1 && table.len() <= MAX_CELL_SPANS && scale > 0.0).then(|| {
-            let curves = SpanCurves {
-                xs: &xs,
-                ys: &ys,
-                w: degree + 1,
-                weights: &weights,
-            };
             let mut cells = MeridianCells::new(&boxes, scale);
-            cells.certify_monotone(curves);
+            // The monotonicity certificates are for polynomial spans; a
+            // rational profile's spans all take the full search.
+            if !rational {
+                cells.certify_monotone(SpanCurves {
+                    xs: &xs,
+                    ys: &ys,
+                    w: degree + 1,
+                    weights: &weights,
+                });
+            }
             cells
         });
         Some(SpanTable {
@@ -410,6 +452,7 @@ impl SpanTable {
             spans: table,
             xs,
             ys,
+            ws,
             weights,
             r_max,
             y_range,
@@ -428,6 +471,7 @@ impl SpanTable {
             + held(&self.groups)
             + held(&self.xs)
             + held(&self.ys)
+            + held(&self.ws)
             + held(&self.weights)
             + self.cells.as_ref().map_or(0, MeridianCells::heap_bytes)
     }
@@ -442,9 +486,13 @@ impl SpanTable {
         ]
     }
 
-    fn coeffs(&self, k: usize) -> (&[f64], &[f64]) {
+    /// Span `k`'s `x` and `y` coefficients, and its weights if the profile
+    /// is rational.
+    fn coeffs(&self, k: usize) -> (&[f64], &[f64], Option<&[f64]>) {
         let w = self.degree + 1;
-        (&self.xs[k * w..(k + 1) * w], &self.ys[k * w..(k + 1) * w])
+        let range = k * w..(k + 1) * w;
+        let ws = (!self.ws.is_empty()).then(|| &self.ws[range.clone()]);
+        (&self.xs[range.clone()], &self.ys[range], ws)
     }
 
     /// The nearest hit of `o + t·d` with `t_min < t < t_max`, in the local
@@ -670,8 +718,8 @@ impl SpanTable {
         report: &mut ExactReport,
     ) {
         report.spans_solved += 1;
-        let (xs, ys) = self.coeffs(k);
-        with_span_form!(xs, ys, |span| {
+        let (xs, ys, ws) = self.coeffs(k);
+        with_span_form!(xs, ys, ws, |span| {
             if !(one_root && self.polish_one_root(k, span, q, t_floor, t_best, best, report)) {
                 self.hits_on(k, span, q, t_floor, t_best, best, report);
             }
@@ -872,7 +920,9 @@ impl SpanTable {
         // if it fits better.
         let (_, s_best, _, at_best) = best;
         if q.d.y != 0.0 && at_best.x.abs() <= 1e-6 * self.scale {
-            if let Some(s_axis) = axis_root(span.xs().coeffs(), s_best) {
+            // x = X/W vanishes where X does (W > 0).
+            let s_axis = span.with_homogeneous(|hx, _, _| axis_root(hx.coeffs(), s_best));
+            if let Some(s_axis) = s_axis {
                 let axis = eval(s_axis);
                 let y = axis.y;
                 let t_axis = (y - q.o.y) / q.d.y;
@@ -1003,17 +1053,18 @@ fn axis_root(xs: &[f64], s0: f64) -> Option<f64> {
 /// ray and leave simpler polynomials to the ones that remain.
 const MIN_PIECES: usize = 8;
 
-/// One refined span in the working frame: its profile parameters and
-/// control points.
+/// One refined span in the working frame: its profile parameters, control
+/// points and, for a rational span, weights (the largest 1).
 struct Piece {
     knots: (f64, f64),
-    points: Vec<nalgebra::Vector2<f64>>,
+    points: Vec<Vector2<f64>>,
+    weights: Option<Vec<f64>>,
 }
 
 /// The power of two that brings the largest control-point coordinate of
 /// `spans` into `[0.5, 1)` (1 when they are all zero): multiplying by it is
 /// exact, so the working frame is the same profile, only rescaled.
-fn working_unit(spans: &[BezierSpan<2>]) -> f64 {
+fn working_unit(spans: &[RationalBezierSpan<2>]) -> f64 {
     let size = spans
         .iter()
         .flat_map(|s| s.curve.points())
@@ -1037,44 +1088,77 @@ fn working_unit(spans: &[BezierSpan<2>]) -> f64 {
 /// The spans raised to `degree` and cut by de Casteljau subdivision into
 /// `⌈MIN_PIECES / n⌉` equal parameter parts each (the same curve, exactly
 /// up to rounding), control points multiplied by `unit`. Nothing is dropped.
-fn refine_spans(spans: &[BezierSpan<2>], degree: usize, unit: f64) -> Vec<Piece> {
-    use crate::bernstein::subdivide;
+///
+/// Polynomial spans (equal weights) are worked on as points; rational ones
+/// as homogeneous points `(wx, wy, w)`, whose raising and subdivision are
+/// the same linear steps, then divided back into points and weights.
+fn refine_spans(spans: &[RationalBezierSpan<2>], degree: usize, unit: f64) -> Vec<Piece> {
     let parts = MIN_PIECES.div_ceil(spans.len()).max(1);
     let mut out = Vec::with_capacity(spans.len() * parts);
     for span in spans {
-        let (a, b) = span.knots;
-        let mut rest: Vec<_> = span
-            .curve
-            .points()
-            .iter()
-            .map(|p| p.coords * unit)
-            .collect();
-        while rest.len() <= degree {
-            rest = raise_degree(&rest);
+        let curve = &span.curve;
+        let points = curve.points().iter().map(|p| p.coords * unit);
+        if curve.is_polynomial() {
+            for (knots, points) in split_span(points.collect(), span.knots, degree, parts) {
+                out.push(Piece {
+                    knots,
+                    points,
+                    weights: None,
+                });
+            }
+        } else {
+            let homogeneous = points
+                .zip(curve.weights())
+                .map(|(p, &w)| Homogeneous2::new(p.x * w, p.y * w, w))
+                .collect();
+            for (knots, h) in split_span(homogeneous, span.knots, degree, parts) {
+                let top = h.iter().fold(0.0_f64, |m, h| m.max(h.z));
+                out.push(Piece {
+                    knots,
+                    points: h
+                        .iter()
+                        .map(|h| Vector2::new(h.x / h.z, h.y / h.z))
+                        .collect(),
+                    weights: Some(h.iter().map(|h| h.z / top).collect()),
+                });
+            }
         }
-        let (mut left, mut right) = (rest.clone(), rest.clone());
-        for k in 0..parts {
-            let (lo, hi) = (
-                a + (b - a) * k as f64 / parts as f64,
-                if k + 1 == parts {
-                    b
-                } else {
-                    a + (b - a) * (k + 1) as f64 / parts as f64
-                },
-            );
-            let points = if k + 1 == parts {
-                rest.clone()
+    }
+    out
+}
+
+/// The Bézier coefficients `rest` on `knots`, raised to `degree` and cut
+/// into `parts` equal parameter parts.
+fn split_span<T: Coefficient>(
+    mut rest: Vec<T>,
+    (a, b): (f64, f64),
+    degree: usize,
+    parts: usize,
+) -> Vec<((f64, f64), Vec<T>)> {
+    use crate::bernstein::subdivide;
+    while rest.len() <= degree {
+        rest = raise_degree(&rest);
+    }
+    let (mut left, mut right) = (rest.clone(), rest.clone());
+    let mut out = Vec::with_capacity(parts);
+    for k in 0..parts {
+        let (lo, hi) = (
+            a + (b - a) * k as f64 / parts as f64,
+            if k + 1 == parts {
+                b
             } else {
-                // Split what remains at the share this part takes of it.
-                subdivide(&rest, 1.0 / (parts - k) as f64, &mut left, &mut right);
-                rest.copy_from_slice(&right);
-                left.clone()
-            };
-            out.push(Piece {
-                knots: (lo, hi),
-                points,
-            });
-        }
+                a + (b - a) * (k + 1) as f64 / parts as f64
+            },
+        );
+        let points = if k + 1 == parts {
+            rest.clone()
+        } else {
+            // Split what remains at the share this part takes of it.
+            subdivide(&rest, 1.0 / (parts - k) as f64, &mut left, &mut right);
+            rest.copy_from_slice(&right);
+            left.clone()
+        };
+        out.push(((lo, hi), points));
     }
     out
 }
@@ -1082,16 +1166,16 @@ fn refine_spans(spans: &[BezierSpan<2>], degree: usize, unit: f64) -> Vec<Piece>
 /// The control points of the same Bézier curve one degree higher:
 /// `Qᵢ = (i/(n+1))·Pᵢ₋₁ + (1 − i/(n+1))·Pᵢ`, `i = 0 … n+1` (Farin, *Curves
 /// and Surfaces for CAGD*, §5.1).
-fn raise_degree(points: &[nalgebra::Vector2<f64>]) -> Vec<nalgebra::Vector2<f64>> {
+fn raise_degree<T: Coefficient>(points: &[T]) -> Vec<T> {
     let m = points.len() as f64;
     (0..=points.len())
-        .map(|i| {
+        .filter_map(|i| {
             let a = i as f64 / m;
             match (i.checked_sub(1).map(|j| points[j]), points.get(i)) {
-                (Some(p), Some(q)) => p * a + q * (1.0 - a),
-                (Some(p), None) => p,
-                (None, Some(q)) => *q,
-                (None, None) => nalgebra::Vector2::zeros(),
+                (Some(p), Some(q)) => Some(p * a + *q * (1.0 - a)),
+                (Some(p), None) => Some(p),
+                (None, Some(q)) => Some(*q),
+                (None, None) => None,
             }
         })
         .collect()
@@ -1379,7 +1463,7 @@ mod tests {
     /// The table of `curve`, and the same table with no span certified
     /// monotonic (every span then takes the full solve).
     fn tables(curve: &BSpline<2>) -> (SpanTable, SpanTable) {
-        let spans = curve.bezier_spans().expect("spans");
+        let spans = curve.rational_bezier_spans().expect("spans");
         let table = SpanTable::new(&spans).expect("one degree");
         let mut full = table.clone();
         if let Some(cells) = &mut full.cells {
@@ -1459,7 +1543,7 @@ mod tests {
         let mut state = 0x5851_f42d_4c95_7f2d_u64;
         let mut worst = 0.0_f64;
         let curve = profile(&mut state, 10, 1.0);
-        let spans = curve.bezier_spans().expect("spans");
+        let spans = curve.rational_bezier_spans().expect("spans");
         let table = SpanTable::new(&spans).expect("one degree");
         for case in 0..20_000 {
             let k = case % table.spans.len();
@@ -1496,5 +1580,87 @@ mod tests {
             worst = worst.max(off / ends.err);
         }
         assert!(worst > 1e-3, "largest error only {worst:e} of the bound");
+    }
+
+    /// A rational quarter circle (weights 1, √½, 1) turned about the axis
+    /// is the upper unit hemisphere: the exact intersector's hits agree with
+    /// the ray–sphere quadratic (its roots with `y ≥ 0`), to 1e-12, with
+    /// the same misses, for rays from all directions at three scales, and
+    /// perpendicular rays (`d_y = 0`) too.
+    #[test]
+    fn rational_hemisphere_matches_the_sphere_quadratic() {
+        use crate::RationalBezier;
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut hits = 0;
+        for scale in [1e-3, 1.0, 1e3] {
+            let quarter = RationalBezier::new(
+                vec![
+                    Point2::new(scale, 0.0),
+                    Point2::new(scale, scale),
+                    Point2::new(0.0, scale),
+                ],
+                vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+            )
+            .expect("valid arc");
+            let spans = quarter.rational_bezier_spans().expect("spans");
+            let table = SpanTable::new(&spans).expect("spans");
+            let tol = Tolerance::default();
+            for case in 0..20_000 {
+                let pick = |state: &mut u64| {
+                    Vector3::new(
+                        (2.4 * unit(state) - 1.2) * scale,
+                        (1.4 * unit(state) - 0.2) * scale,
+                        (2.4 * unit(state) - 1.2) * scale,
+                    )
+                };
+                let target = pick(&mut state);
+                let mut o = pick(&mut state) * 3.0;
+                if case % 10 == 0 {
+                    o.y = target.y;
+                }
+                let d = target - o;
+                let o = Point3::from(o);
+                // Reference: |o + t d|² = r², roots with y ≥ 0, nearest > 0.
+                let (a, b, c) = (
+                    d.norm_squared(),
+                    o.coords.dot(&d),
+                    o.coords.norm_squared() - scale * scale,
+                );
+                let disc = b * b - a * c;
+                let mut want = None;
+                if disc >= 0.0 {
+                    let q = -(b + b.signum() * disc.sqrt());
+                    let mut roots = [q / a, c / q];
+                    roots.sort_by(f64::total_cmp);
+                    want = roots
+                        .into_iter()
+                        .find(|&t| t > 0.0 && (o.y + t * d.y) >= 0.0);
+                }
+                // Skip rays whose reference hit is within rounding of the
+                // rim (y = 0) or of tangency: either answer is right there.
+                let near_rim = want.is_some_and(|t| (o.y + t * d.y).abs() < 1e-9 * scale)
+                    || disc.abs() < 1e-9 * a * scale * scale;
+                if near_rim {
+                    continue;
+                }
+                let got =
+                    table.intersect(o, d, 0.0, f64::INFINITY, &tol, &mut ExactReport::default());
+                match (got, want) {
+                    (None, None) => {}
+                    (Some(g), Some(t)) => {
+                        hits += 1;
+                        assert!(
+                            (g.t - t).abs() * d.norm() <= 1e-12 * scale * 10.0,
+                            "t {} against {t} (o {o:?}, d {d:?})",
+                            g.t
+                        );
+                        let p = o + d * g.t;
+                        assert!((p.coords.norm() - scale).abs() <= 1e-12 * scale * 10.0);
+                    }
+                    (g, t) => panic!("got {g:?}, want {t:?}: o {o:?}, d {d:?}"),
+                }
+            }
+        }
+        assert!(hits > 20_000, "only {hits} hits");
     }
 }

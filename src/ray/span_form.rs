@@ -1,10 +1,13 @@
 //! One profile span in Bézier form, as the exact intersector evaluates it.
 //!
 //! A span is `(x(s), y(s))`, `s ∈ [0, 1]`, with Bernstein coefficients `xs`
-//! and `ys`. Spans of degree ≤ 5 come as fixed-size arrays ([`Fixed`]): the
-//! hit polynomial, its root search and every evaluation are then compiled for
+//! and `ys`, and for a rational span positive weights `ws`: then
+//! `x = X/W`, `y = Y/W` with `X = Σ wᵢxᵢBᵢ`, `Y = Σ wᵢyᵢBᵢ`, `W = Σ wᵢBᵢ`.
+//! Spans of degree ≤ 5 come as fixed-size arrays ([`Fixed`]): the hit
+//! polynomial, its root search and every evaluation are then compiled for
 //! that size (unrolled, in registers, no dispatch per call). Higher degrees
-//! use slices ([`Slices`]). Both compute the same numbers.
+//! use slices ([`Slices`]). Both compute the same numbers. Polynomial spans
+//! carry [`Unweighted`], whose unit weights the compiler folds away.
 
 use super::revolution::Query;
 use crate::bernstein::Polynomial;
@@ -19,6 +22,42 @@ pub(super) struct ProfilePoint {
     pub(super) dy: f64,
 }
 
+/// A span's weights: none (a polynomial span) or one per coefficient.
+pub(super) trait Weights: Copy {
+    /// Whether the span is rational.
+    const RATIONAL: bool;
+    /// Weight `i` (1 for a polynomial span).
+    fn at(&self, i: usize) -> f64;
+}
+
+/// The weights of a polynomial span: all 1, known at compile time.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Unweighted;
+
+impl Weights for Unweighted {
+    const RATIONAL: bool = false;
+    #[inline(always)]
+    fn at(&self, _: usize) -> f64 {
+        1.0
+    }
+}
+
+impl<const W: usize> Weights for &[f64; W] {
+    const RATIONAL: bool = true;
+    #[inline(always)]
+    fn at(&self, i: usize) -> f64 {
+        self[i]
+    }
+}
+
+impl Weights for &[f64] {
+    const RATIONAL: bool = true;
+    #[inline(always)]
+    fn at(&self, i: usize) -> f64 {
+        self[i]
+    }
+}
+
 /// A span's Bernstein coefficients and what the intersector evaluates on
 /// them.
 pub(super) trait SpanForm: Copy {
@@ -28,30 +67,73 @@ pub(super) trait SpanForm: Copy {
     /// The coefficients of `x(s)`, `y(s)` and `y(s) − h` (degree `n`).
     type Coeffs: Polynomial + ?Sized;
 
-    /// The `x` coefficients.
+    /// Whether the span is rational.
+    const RATIONAL: bool;
+
+    /// The `x` coefficients (the control points' `x`).
     fn xs(&self) -> &Self::Coeffs;
 
-    /// The `y` coefficients.
+    /// The `y` coefficients (the control points' `y`).
     fn ys(&self) -> &Self::Coeffs;
 
+    /// Hands the homogeneous coefficients `wᵢxᵢ`, `wᵢyᵢ`, `wᵢ` to `then`
+    /// (for a polynomial span: `xs`, `ys` and ones).
+    fn with_homogeneous<R>(
+        &self,
+        then: impl FnOnce(&Self::Coeffs, &Self::Coeffs, &Self::Coeffs) -> R,
+    ) -> R;
+
     /// `x`, `y` and their derivatives at `s` (one de Casteljau pass each).
+    ///
+    /// A rational span is evaluated as `X/W`, `(X′ − xW′)/W`; beyond
+    /// `[0, 1]` (where Newton's method may step, and `W` need not stay
+    /// positive) it is continued along its end tangent.
     #[inline(always)]
     fn point(&self, s: f64) -> ProfilePoint {
-        let (x, dx) = self.xs().value_and_slope(s).unwrap_or((0.0, 0.0));
-        let (y, dy) = self.ys().value_and_slope(s).unwrap_or((0.0, 0.0));
-        ProfilePoint { x, y, dx, dy }
+        if !Self::RATIONAL {
+            let (x, dx) = self.xs().value_and_slope(s).unwrap_or((0.0, 0.0));
+            let (y, dy) = self.ys().value_and_slope(s).unwrap_or((0.0, 0.0));
+            return ProfilePoint { x, y, dx, dy };
+        }
+        let inside = s.clamp(0.0, 1.0);
+        let p = self.with_homogeneous(|hx, hy, w| {
+            let (x, dx) = hx.value_and_slope(inside).unwrap_or((0.0, 0.0));
+            let (y, dy) = hy.value_and_slope(inside).unwrap_or((0.0, 0.0));
+            let (w, dw) = w.value_and_slope(inside).unwrap_or((1.0, 0.0));
+            let (x, y) = (x / w, y / w);
+            ProfilePoint {
+                x,
+                y,
+                dx: (dx - x * dw) / w,
+                dy: (dy - y * dw) / w,
+            }
+        });
+        let beyond = s - inside;
+        ProfilePoint {
+            x: p.x + beyond * p.dx,
+            y: p.y + beyond * p.dy,
+            ..p
+        }
     }
 
     /// `x(s)`.
     #[inline(always)]
     fn x(&self, s: f64) -> f64 {
-        self.xs().value(s)
+        if Self::RATIONAL {
+            self.point(s).x
+        } else {
+            self.xs().value(s)
+        }
     }
 
     /// `y(s)`.
     #[inline(always)]
     fn y(&self, s: f64) -> f64 {
-        self.ys().value(s)
+        if Self::RATIONAL {
+            self.point(s).y
+        } else {
+            self.ys().value(s)
+        }
     }
 
     /// Forms the hit polynomial of the ray `q` on this span (see the
@@ -64,44 +146,60 @@ pub(super) trait SpanForm: Copy {
         then: impl FnOnce(&Self::Poly, f64) -> R,
     ) -> R;
 
-    /// Forms `y(s) − h`, which vanishes where a ray perpendicular to the
-    /// axis at height `h` meets the span's circles, and hands its
-    /// coefficients and their rounding bound (`2ε(|yᵢ| + |h|)`) to `then`.
+    /// Forms `y(s) − h` (times `W` for a rational span), which vanishes
+    /// where a ray perpendicular to the axis at height `h` meets the span's
+    /// circles, and hands its coefficients and their rounding bound
+    /// (`3ε wᵢ(|yᵢ| + |h|)`) to `then`.
     fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Coeffs, f64) -> R) -> R;
 }
 
-/// `y(s) − h` into `g` and its rounding bound.
+/// `wᵢ(yᵢ − h)` into `g` and its rounding bound.
 #[inline(always)]
-fn heights(ys: &[f64], h: f64, g: &mut [f64]) -> f64 {
+fn heights(ys: &[f64], ws: impl Weights, h: f64, g: &mut [f64]) -> f64 {
     let mut err = 0.0_f64;
-    for (gi, &y) in g.iter_mut().zip(ys) {
-        *gi = y - h;
-        err = err.max(2.0 * f64::EPSILON * (y.abs() + h.abs()));
+    for (i, (gi, &y)) in g.iter_mut().zip(ys).enumerate() {
+        let w = ws.at(i);
+        *gi = w * (y - h);
+        err = err.max(3.0 * f64::EPSILON * w * (y.abs() + h.abs()));
     }
     err
 }
 
 /// A span of `W` coefficients per coordinate (degree `W − 1`).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Fixed<'a, const W: usize> {
+pub(super) struct Fixed<'a, const W: usize, R> {
     pub(super) xs: &'a [f64; W],
     pub(super) ys: &'a [f64; W],
+    pub(super) ws: R,
 }
 
 /// A span of any degree.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Slices<'a> {
+pub(super) struct Slices<'a, R> {
     pub(super) xs: &'a [f64],
     pub(super) ys: &'a [f64],
+    pub(super) ws: R,
 }
 
 /// `SpanForm` for `Fixed<W>` with a hit polynomial of `F = 2W − 1`
 /// coefficients (stable Rust cannot write `2 * W − 1` as an array length).
 macro_rules! fixed_span_form {
     ($($w:literal => $f:literal),*) => {$(
-        impl SpanForm for Fixed<'_, $w> {
+        impl<Wt: Weights> SpanForm for Fixed<'_, $w, Wt> {
             type Poly = [f64; $f];
             type Coeffs = [f64; $w];
+            const RATIONAL: bool = Wt::RATIONAL;
+
+            #[inline(always)]
+            fn with_homogeneous<T>(
+                &self,
+                then: impl FnOnce(&Self::Coeffs, &Self::Coeffs, &Self::Coeffs) -> T,
+            ) -> T {
+                let w: [f64; $w] = std::array::from_fn(|i| self.ws.at(i));
+                let hx: [f64; $w] = std::array::from_fn(|i| w[i] * self.xs[i]);
+                let hy: [f64; $w] = std::array::from_fn(|i| w[i] * self.ys[i]);
+                then(&hx, &hy, &w)
+            }
 
             #[inline(always)]
             fn xs(&self) -> &Self::Coeffs {
@@ -121,9 +219,9 @@ macro_rules! fixed_span_form {
                 then: impl FnOnce(&Self::Poly, f64) -> R,
             ) -> R {
                 let (mut a, mut b, mut c) = ([0.0; $w], [0.0; $w], [0.0; $w]);
-                let m = span_terms(self.xs, self.ys, q, &mut a, &mut b, &mut c);
+                let m = span_terms(self.xs, self.ys, self.ws, q, &mut a, &mut b, &mut c);
                 let mut f = [0.0; $f];
-                let err = products_into(&a, &b, &c, m, &weights[..$w * $w], &mut f);
+                let err = products_into(&a, &b, &c, m, Wt::RATIONAL, &weights[..$w * $w], &mut f);
                 then(&f, err)
             }
 
@@ -134,7 +232,7 @@ macro_rules! fixed_span_form {
                 then: impl FnOnce(&Self::Coeffs, f64) -> R,
             ) -> R {
                 let mut g = [0.0; $w];
-                let err = heights(self.ys, h, &mut g);
+                let err = heights(self.ys, self.ws, h, &mut g);
                 then(&g, err)
             }
         }
@@ -143,9 +241,24 @@ macro_rules! fixed_span_form {
 
 fixed_span_form!(2 => 3, 3 => 5, 4 => 7, 5 => 9, 6 => 11);
 
-impl SpanForm for Slices<'_> {
+impl<Wt: Weights> SpanForm for Slices<'_, Wt> {
     type Poly = [f64];
     type Coeffs = [f64];
+    const RATIONAL: bool = Wt::RATIONAL;
+
+    fn with_homogeneous<T>(&self, then: impl FnOnce(&[f64], &[f64], &[f64]) -> T) -> T {
+        let w = self.xs.len();
+        with_scratch(3 * w, 0.0, |buf| {
+            let (hx, rest) = buf.split_at_mut(w);
+            let (hy, ws) = rest.split_at_mut(w);
+            for i in 0..w {
+                ws[i] = self.ws.at(i);
+                hx[i] = ws[i] * self.xs[i];
+                hy[i] = ws[i] * self.ys[i];
+            }
+            then(hx, hy, ws)
+        })
+    }
 
     fn xs(&self) -> &Self::Coeffs {
         self.xs
@@ -167,15 +280,15 @@ impl SpanForm for Slices<'_> {
             let (b, rest) = rest.split_at_mut(w);
             let (c, f) = rest.split_at_mut(w);
             let f = &mut f[..(2 * w).saturating_sub(1)];
-            let m = span_terms(self.xs, self.ys, q, a, b, c);
-            let err = products_into(a, b, c, m, weights, f);
+            let m = span_terms(self.xs, self.ys, self.ws, q, a, b, c);
+            let err = products_into(a, b, c, m, Wt::RATIONAL, weights, f);
             then(f, err)
         })
     }
 
     fn with_height_polynomial<R>(&self, h: f64, then: impl FnOnce(&Self::Coeffs, f64) -> R) -> R {
         with_scratch(self.ys.len(), 0.0, |g| {
-            let err = heights(self.ys, h, g);
+            let err = heights(self.ys, self.ws, h, g);
             then(g, err)
         })
     }
@@ -185,10 +298,16 @@ impl SpanForm for Slices<'_> {
 /// one span (see the intersector's module docs), and the largest magnitudes
 /// of the terms that form them (`|o_x d_y| + |h d_x|` and so on: with
 /// cancellation the rounding error is relative to those, not to the result).
+///
+/// For a rational span the condition is multiplied by `W²`: `W·A`, `W·B`
+/// and `d_y X` have the coefficients `wᵢaᵢ`, `wᵢbᵢ`, `wᵢcᵢ` (one more
+/// rounding each, covered by [`products_into`]'s bound), so the hit
+/// polynomial keeps degree `2n` and needs no division.
 #[inline(always)]
 fn span_terms(
     xs: &[f64],
     ys: &[f64],
+    ws: impl Weights,
     q: &Query,
     a: &mut [f64],
     b: &mut [f64],
@@ -198,12 +317,13 @@ fn span_terms(
     let (oxdy, ozdy) = (o.x * d.y, o.z * d.y);
     let mut m = [0.0_f64; 3];
     for i in 0..xs.len() {
+        let w = ws.at(i);
         let h = ys[i] - o.y;
-        a[i] = oxdy + h * d.x;
-        b[i] = ozdy + h * d.z;
-        c[i] = d.y * xs[i];
-        m[0] = m[0].max(oxdy.abs() + (h * d.x).abs());
-        m[1] = m[1].max(ozdy.abs() + (h * d.z).abs());
+        a[i] = w * (oxdy + h * d.x);
+        b[i] = w * (ozdy + h * d.z);
+        c[i] = w * (d.y * xs[i]);
+        m[0] = m[0].max(w * (oxdy.abs() + (h * d.x).abs()));
+        m[1] = m[1].max(w * (ozdy.abs() + (h * d.z).abs()));
         m[2] = m[2].max(c[i].abs());
     }
     m
@@ -222,6 +342,7 @@ fn products_into(
     b: &[f64],
     c: &[f64],
     [ma, mb, mc]: [f64; 3],
+    rational: bool,
     weights: &[f64],
     f: &mut [f64],
 ) -> f64 {
@@ -233,7 +354,8 @@ fn products_into(
             f[i + j] += 2.0 * weights[i * w + j] * (a[i] * a[j] + b[i] * b[j] - c[i] * c[j]);
         }
     }
-    (w + 7) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
+    let slack = if rational { 10 } else { 7 };
+    (w + slack) as f64 * f64::EPSILON * (ma * ma + mb * mb + mc * mc)
 }
 
 #[cfg(test)]
@@ -278,8 +400,16 @@ mod tests {
             let d = Vector3::new(next(), next(), next());
             let q = Query::new(o, d, &Tolerance::default(), 3.0);
             let w = weights(4);
-            let fixed = Fixed { xs: &xs, ys: &ys };
-            let slices = Slices { xs: &xs, ys: &ys };
+            let fixed = Fixed {
+                xs: &xs,
+                ys: &ys,
+                ws: Unweighted,
+            };
+            let slices = Slices {
+                xs: &xs,
+                ys: &ys,
+                ws: Unweighted,
+            };
             let (f_fixed, e_fixed) = fixed.with_hit_polynomial(&q, &w, |f, e| (*f, e));
             let (f_slices, e_slices) = slices.with_hit_polynomial(&q, &w, |f, e| (f.to_vec(), e));
             assert_eq!(f_fixed.to_vec(), f_slices);
@@ -325,35 +455,72 @@ mod tests {
     /// more than about a thousand times the largest error seen.
     #[test]
     fn hit_polynomial_is_within_its_rounding_bound() {
-        let mut next = values(29);
+        check_rounding_bound(29, false);
+    }
+
+    /// The same for rational spans, weights from 0.05 to 20: the
+    /// coefficients of `W²f` against double-double.
+    #[test]
+    fn rational_hit_polynomial_is_within_its_rounding_bound() {
+        check_rounding_bound(31, true);
+    }
+
+    fn check_rounding_bound(seed: u64, rational: bool) {
+        let mut next = values(seed);
         let mut worst = 0.0_f64;
         for case in 0..3000 {
             let w = 2 + case % 5;
             let n = w - 1;
             let xs: Vec<f64> = (0..w).map(|_| 2.0 * next()).collect();
             let ys: Vec<f64> = (0..w).map(|_| 3.0 * next()).collect();
+            let ws: Vec<f64> = (0..w)
+                .map(|_| {
+                    if rational {
+                        0.05 * 400f64.powf(0.5 + 0.5 * next())
+                    } else {
+                        1.0
+                    }
+                })
+                .collect();
             let far = [1.0, 1e3, 1e6][case % 3];
             let o = Vector3::new(4.0 * next(), 4.0 * next(), 4.0 * next()) * far;
             let mut d = Vector3::new(next(), next(), next());
             if case % 4 == 0 {
                 // Aim at a point of the span's profile circle: f has a root.
                 let s = 0.5 + 0.5 * next();
+                let hx: Vec<f64> = (0..w).map(|i| ws[i] * xs[i]).collect();
+                let hy: Vec<f64> = (0..w).map(|i| ws[i] * ys[i]).collect();
+                let weight = bernstein_sum(&ws, s).unwrap();
                 let (x, y) = (
-                    bernstein_sum(&xs, s).unwrap(),
-                    bernstein_sum(&ys, s).unwrap(),
+                    bernstein_sum(&hx, s).unwrap() / weight,
+                    bernstein_sum(&hy, s).unwrap() / weight,
                 );
                 let angle = 3.0 * next();
                 d = Vector3::new(x * angle.cos(), y, -x * angle.sin()) - o;
             }
             let q = Query::new(o, d, &Tolerance::default(), 3.0);
-            let span = Slices { xs: &xs, ys: &ys };
-            let (f, err) = span.with_hit_polynomial(&q, &weights(w), |f, e| (f.to_vec(), e));
+            let (f, err) = if rational {
+                let span = Slices {
+                    xs: &xs,
+                    ys: &ys,
+                    ws: &ws[..],
+                };
+                span.with_hit_polynomial(&q, &weights(w), |f, e| (f.to_vec(), e))
+            } else {
+                let span = Slices {
+                    xs: &xs,
+                    ys: &ys,
+                    ws: Unweighted,
+                };
+                span.with_hit_polynomial(&q, &weights(w), |f, e| (f.to_vec(), e))
+            };
             let term = |i: usize| {
                 let h = Dd::from(ys[i]).add(Dd::from(-o.y));
+                let wi = Dd::from(ws[i]);
                 (
-                    Dd::from(o.x).mul(Dd::from(d.y)).add(h.mul(Dd::from(d.x))),
-                    Dd::from(o.z).mul(Dd::from(d.y)).add(h.mul(Dd::from(d.z))),
-                    Dd::from(d.y).mul(Dd::from(xs[i])),
+                    wi.mul(Dd::from(o.x).mul(Dd::from(d.y)).add(h.mul(Dd::from(d.x)))),
+                    wi.mul(Dd::from(o.z).mul(Dd::from(d.y)).add(h.mul(Dd::from(d.z)))),
+                    wi.mul(Dd::from(d.y).mul(Dd::from(xs[i]))),
                 )
             };
             for (k, &fk) in f.iter().enumerate() {
@@ -372,8 +539,10 @@ mod tests {
                 );
                 worst = worst.max(off / err);
             }
-            // |aᵢ|, |bᵢ| ≤ |o|·|d|·2 + 3|d|, |cᵢ| ≤ 2|d_y|.
-            let size = (2.0 * o.amax() * d.amax() + 3.0 * d.amax()).powi(2) + (2.0 * d.y).powi(2);
+            // |aᵢ|, |bᵢ| ≤ wᵢ(|o|·|d|·2 + 3|d|), |cᵢ| ≤ 2wᵢ|d_y|.
+            let w_max = ws.iter().fold(0.0_f64, |m, &w| m.max(w));
+            let size = w_max.powi(2)
+                * ((2.0 * o.amax() * d.amax() + 3.0 * d.amax()).powi(2) + (2.0 * d.y).powi(2));
             assert!(
                 err <= 1e-13 * size,
                 "bound {err:e} for terms of size {size:e}"

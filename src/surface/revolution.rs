@@ -1,7 +1,7 @@
 //! Surfaces of revolution: a planar profile turned about an axis.
 
 use super::profile_approximation::approximate;
-use crate::curve::BezierSpan;
+use crate::curve::RationalBezierSpan;
 use crate::ray::profile_refine::refine_on_profile;
 use crate::ray::revolution::{ExactReport, SpanTable};
 use crate::{Aabb, Curve, Error, Hit, Intersect, Ray, Surface, Tolerance};
@@ -119,7 +119,7 @@ fn intersector_data<C: Curve<2>>(profile: &C) -> Result<(SpanTable, Option<f64>)
             return Err(Error::CurveNotFinite { t });
         }
     }
-    match profile.bezier_spans() {
+    match profile.rational_bezier_spans() {
         Some(spans) => {
             check_spans(&spans)?;
             let table = SpanTable::new(&spans).ok_or(Error::SpansOutOfOrder { index: 0 })?;
@@ -127,19 +127,23 @@ fn intersector_data<C: Curve<2>>(profile: &C) -> Result<(SpanTable, Option<f64>)
         }
         None => {
             let approx = approximate(profile, (a, b))?;
-            let table =
-                SpanTable::new(&approx.spans).ok_or(Error::ProfileTooRough { pieces: 0 })?;
+            let spans: Vec<RationalBezierSpan<2>> = approx
+                .spans
+                .into_iter()
+                .map(RationalBezierSpan::from)
+                .collect();
+            let table = SpanTable::new(&spans).ok_or(Error::ProfileTooRough { pieces: 0 })?;
             Ok((table, Some(approx.deviation)))
         }
     }
 }
 
-/// Checks what [`Curve::bezier_spans`] promises: at least one span, each
+/// Checks what [`Curve::rational_bezier_spans`] promises: at least one span, each
 /// on a non-empty interval within [`MAX_COORDINATE`](crate::MAX_COORDINATE)
 /// that starts where the previous one ends or later, with finite control
 /// points within
 /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (and its rounding).
-fn check_spans(spans: &[BezierSpan<2>]) -> Result<(), Error> {
+fn check_spans(spans: &[RationalBezierSpan<2>]) -> Result<(), Error> {
     if spans.is_empty() {
         return Err(Error::SpansOutOfOrder { index: 0 });
     }
@@ -646,30 +650,29 @@ fn profile_ranges<C: Curve<2>>(profile: &C, u0: f64, u1: f64) -> ((f64, f64), (f
     let empty = (f64::INFINITY, f64::NEG_INFINITY);
     let widen = |r: (f64, f64), x: f64| (r.0.min(x), r.1.max(x));
     let (mut xr, mut yr) = (empty, empty);
-    if let Some(spans) = profile.bezier_spans() {
+    if let Some(spans) = profile.rational_bezier_spans() {
         let mut degree = 0;
-        let mut buf = Vec::new();
         for span in &spans {
             let (a, b) = span.knots;
             if b < u0 || a > u1 || b <= a {
                 continue;
             }
-            let pts = span.curve.points();
-            degree = degree.max(pts.len().saturating_sub(1));
+            let curve = &span.curve;
+            degree = degree.max(curve.degree());
             let s0 = ((u0 - a) / (b - a)).clamp(0.0, 1.0);
             let s1 = ((u1 - a) / (b - a)).clamp(0.0, 1.0);
-            // Cut to [0, s1], then the cut piece to [s0/s1, 1].
-            let c: Vec<nalgebra::Vector2<f64>> = pts.iter().map(|p| p.coords).collect();
-            buf.clear();
-            buf.resize(3 * c.len(), nalgebra::Vector2::zeros());
-            let (left, rest) = buf.split_at_mut(c.len());
-            let (right, cut) = rest.split_at_mut(c.len());
-            crate::bernstein::subdivide(&c, s1, left, right);
-            if s1 > 0.0 && s0 > 0.0 {
-                crate::bernstein::subdivide(left, (s0 / s1).min(1.0), right, cut);
+            // A rational piece is cut in homogeneous coordinates (wx, wy, w);
+            // the cut control points (divided back) bound it as well.
+            let pts = curve.points().iter().zip(curve.weights());
+            let cut = if curve.is_polynomial() {
+                cut_piece(pts.map(|(p, _)| p.coords).collect(), s0, s1)
             } else {
-                cut.copy_from_slice(left);
-            }
+                let h = pts.map(|(p, &w)| nalgebra::Vector3::new(p.x * w, p.y * w, w));
+                cut_piece(h.collect(), s0, s1)
+                    .into_iter()
+                    .map(|h| nalgebra::Vector2::new(h.x / h.z, h.y / h.z))
+                    .collect()
+            };
             for q in cut.iter() {
                 xr = widen(xr, q.x);
                 yr = widen(yr, q.y);
@@ -692,6 +695,19 @@ fn profile_ranges<C: Curve<2>>(profile: &C, u0: f64, u1: f64) -> ((f64, f64), (f
     }
     let m = h * speed;
     ((xr.0 - m, xr.1 + m), (yr.0 - m, yr.1 + m), 3)
+}
+
+/// The Bézier coefficients `c` of a piece cut to `[s0, s1]` (two de
+/// Casteljau subdivisions: to `[0, s1]`, then that to `[s0/s1, 1]`).
+fn cut_piece<T: crate::bernstein::Coefficient>(c: Vec<T>, s0: f64, s1: f64) -> Vec<T> {
+    let (mut left, mut right, mut cut) = (c.clone(), c.clone(), c.clone());
+    crate::bernstein::subdivide(&c, s1, &mut left, &mut right);
+    if s1 > 0.0 && s0 > 0.0 {
+        crate::bernstein::subdivide(&left, (s0 / s1).min(1.0), &mut right, &mut cut);
+    } else {
+        cut.copy_from_slice(&left);
+    }
+    cut
 }
 
 /// The exact local `(x, z)` ranges of the sector `{(r cos θ, −r sin θ)}`,
