@@ -220,6 +220,37 @@ pub enum Error {
         /// The limit.
         max: f64,
     },
+    // -- Added for issue 17 by h-nurbs: circles, arcs, derivative orders. --
+    /// A circle's or arc's radius is not a finite positive number at most
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidRadius {
+        /// The radius given.
+        radius: f64,
+    },
+    /// A circle's or arc's center has a NaN or infinite coordinate, or one
+    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidCenter {
+        /// The center given.
+        center: nalgebra::Point2<f64>,
+    },
+    /// An arc's sweep `end − start` (radians, counter-clockwise) is not in
+    /// `(0, 2π]`, or an angle is NaN or infinite.
+    InvalidSweep {
+        /// The start angle given.
+        start: f64,
+        /// The end angle given.
+        end: f64,
+    },
+    /// A derivative of an order beyond the supported
+    /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER) was asked
+    /// for (a rational curve's derivatives do not vanish above its degree;
+    /// each order costs time and memory).
+    DerivativeOrderTooHigh {
+        /// The order asked for.
+        order: usize,
+        /// The highest order supported.
+        max: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -391,6 +422,29 @@ impl fmt::Display for Error {
                 "the derivative of order {order} could exceed {} in magnitude: spread the \
                  knots or bring the control points closer together",
                 Num(crate::curve::MAX_DERIVATIVE)
+            ),
+            Error::InvalidRadius { radius } => write!(
+                f,
+                "radius {} is not a finite positive number at most {}",
+                Num(radius),
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::InvalidCenter { center } => write!(
+                f,
+                "center ({}, {}) is not a finite point with coordinates at most {}",
+                Num(center.x),
+                Num(center.y),
+                Num(crate::MAX_COORDINATE)
+            ),
+            Error::InvalidSweep { start, end } => write!(
+                f,
+                "arc from {} to {} radians: the sweep end − start must be a number in (0, 2π]",
+                Num(start),
+                Num(end)
+            ),
+            Error::DerivativeOrderTooHigh { order, max } => write!(
+                f,
+                "derivative of order {order} asked for; the highest supported order is {max}"
             ),
         }
     }

@@ -86,7 +86,7 @@ pub const MAX_COORDINATE: f64 = 1e100;
 pub use aabb::Aabb;
 pub use curve::{
     BSpline, Bezier, BezierSpan, Curve, CurveSample, Flattening, MAX_DERIVATIVE, MAX_SEGMENTS,
-    RationalBezier, RationalBezierSpan,
+    Nurbs, RationalBezier, RationalBezierSpan,
 };
 pub use error::Error;
 pub use ray::newton::{NewtonIntersector, NewtonReport};

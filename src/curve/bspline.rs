@@ -51,7 +51,7 @@ pub struct BSpline<const D: usize> {
     knots: Vec<f64>,
     points: Vec<Point<f64, D>>,
     /// The Bézier form of every non-empty span, computed at construction.
-    pieces: PieceTable<D>,
+    pieces: PieceTable<SVector<f64, D>>,
 }
 
 /// One polynomial piece of a B-spline as a Bézier curve: on the knot interval
@@ -84,48 +84,7 @@ impl<const D: usize> BSpline<D> {
     /// order of an accepted curve are finite everywhere.
     pub fn new(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
-        let n = points.len();
-        if n <= degree {
-            return Err(Error::DegreeTooHigh { degree, points: n });
-        }
-        let expected = n + degree + 1;
-        if knots.len() != expected {
-            return Err(Error::KnotCount {
-                expected,
-                found: knots.len(),
-            });
-        }
-        for (index, &value) in knots.iter().enumerate() {
-            if !value.is_finite() {
-                return Err(Error::NonFiniteKnot { index });
-            }
-            if value.abs() > crate::MAX_COORDINATE {
-                return Err(Error::KnotTooLarge { index, value });
-            }
-        }
-        if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
-            return Err(Error::DecreasingKnots { index });
-        }
-        let min = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
-        for index in 1..knots.len() {
-            let gap = knots[index] - knots[index - 1];
-            if gap > 0.0 && gap < min {
-                return Err(Error::KnotGapTooSmall { index, gap, min });
-            }
-        }
-        for run in knots.chunk_by(|a, b| a == b) {
-            if run.len() > degree + 1 {
-                return Err(Error::KnotMultiplicity {
-                    knot: run[0],
-                    multiplicity: run.len(),
-                    max: degree + 1,
-                });
-            }
-        }
-        let (start, end) = (knots[degree], knots[n]);
-        if start >= end {
-            return Err(Error::EmptyDomain { start, end });
-        }
+        validate_knots(degree, &knots, points.len())?;
         Self::from_checked_parts(degree, knots, points)
     }
 
@@ -153,11 +112,13 @@ impl<const D: usize> BSpline<D> {
     /// span's control points, kept in their bounding box.
     fn from_valid_parts(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Self {
         let n = points.len();
-        let pieces = PieceTable::new(degree, &knots, n, |span, out| {
+        let coords: Vec<SVector<f64, D>> = points.iter().map(|p| p.coords).collect();
+        let pieces = PieceTable::new(degree, &knots, n, SVector::zeros(), |span, out| {
             let (a, b) = (knots[span], knots[span + 1]);
             let hull = point_bounds(&points[span - degree..=span]);
+            let control = &coords[span - degree..=span];
             for (r, dst) in out.iter_mut().enumerate() {
-                let value = blossom(&knots, &points, degree, span, degree - r, a, b);
+                let value = blossom(&knots, control, degree, span, degree - r, a, b);
                 *dst = clamp_to_box(value, hull);
             }
         });
@@ -404,7 +365,7 @@ impl<const D: usize> BSpline<D> {
         // The pieces are the hodographs of this curve's pieces, computed as
         // `new` checked them, so derivatives of the result stay finite.
         let mut piece = 0;
-        let pieces = PieceTable::new(p - 1, &knots, points.len(), |_, out| {
+        let pieces = PieceTable::new(p - 1, &knots, points.len(), SVector::zeros(), |_, out| {
             let (a, b) = self.pieces.interval(piece);
             let c = self.pieces.coeffs(piece);
             for (j, dst) in out.iter_mut().enumerate() {
@@ -438,25 +399,7 @@ impl<const D: usize> BSpline<D> {
     /// rounding broke the bound of [`new`](Self::new) (only for curves at
     /// that bound).
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<BSpline<D>, Error> {
-        check_in_domain(t, self.domain())?;
-        // A parameter closer to an existing knot than rounding can resolve
-        // (see `Error::KnotGapTooSmall`) is that knot.
-        let min_gap = 4.0 * f64::EPSILON * (self.knots[self.knots.len() - 1] - self.knots[0]);
-        let t = self
-            .knots
-            .iter()
-            .copied()
-            .find(|&k| (k - t).abs() < min_gap)
-            .unwrap_or(t);
-        let existing = self.knots.iter().filter(|&&k| k == t).count();
-        let multiplicity = existing.saturating_add(times);
-        if multiplicity > self.degree + 1 {
-            return Err(Error::KnotMultiplicity {
-                knot: t,
-                multiplicity,
-                max: self.degree + 1,
-            });
-        }
+        let t = knot_to_insert(&self.knots, self.degree, self.domain(), t, times)?;
         let mut curve = self.clone();
         for _ in 0..times {
             curve = curve.insert_once(t)?;
@@ -464,25 +407,15 @@ impl<const D: usize> BSpline<D> {
         Ok(curve)
     }
 
-    /// One Boehm insertion: in span `k` (`t_k ≤ t ≤ t_{k+1}`) the new points are
-    /// `Qⱼ = (1 − αⱼ)Pⱼ₋₁ + αⱼPⱼ`, `αⱼ = (t − tⱼ)/(tⱼ₊ₚ − tⱼ)`, `k − p < j ≤ k`.
-    /// The new points stay in the box of the two they combine.
+    /// One Boehm insertion ([`boehm_insert`]); the new points stay in the
+    /// box of the two they combine.
     fn insert_once(&self, t: f64) -> Result<BSpline<D>, Error> {
         let p = self.degree;
         let k = self.span_of_clamped(t);
-        let mut points = Vec::with_capacity(self.points.len() + 1);
-        points.extend_from_slice(&self.points[..=k - p]);
-        for j in (k - p + 1)..=k {
-            let alpha = (t - self.knots[j]) / (self.knots[j + p] - self.knots[j]);
-            let pair = &self.points[j - 1..=j];
-            let q = lerp(pair[0].coords, pair[1].coords, alpha);
-            points.push(Point::from(clamp_to_box(q, point_bounds(pair))));
-        }
-        points.extend_from_slice(&self.points[k..]);
-        let mut knots = Vec::with_capacity(self.knots.len() + 1);
-        knots.extend_from_slice(&self.knots[..=k]);
-        knots.push(t);
-        knots.extend_from_slice(&self.knots[k + 1..]);
+        let (knots, points) = boehm_insert(&self.knots, p, k, t, &self.points, |a, b, alpha| {
+            let q = lerp(a.coords, b.coords, alpha);
+            Point::from(clamp_to_box(q, point_bounds(&[a, b])))
+        });
         BSpline::from_checked_parts(p, knots, points)
     }
 
@@ -589,27 +522,93 @@ impl<const D: usize> Curve<D> for BSpline<D> {
 }
 
 /// The blossom `f(a, …, a, b, …, b)` (`count_a` copies of `a`, the rest `b`)
-/// of the polynomial on knot span `span`: de Boor's algorithm with argument
-/// `a` at the first `count_a` levels and `b` after.
-fn blossom<const D: usize>(
+/// of the polynomial on knot span `span`, whose `p + 1` control values
+/// (global indices `span − p … span`) are `control`: de Boor's algorithm with
+/// argument `a` at the first `count_a` levels and `b` after. The values are
+/// vectors for a polynomial spline, homogeneous points for a rational one.
+pub(crate) fn blossom<T: crate::bernstein::Coefficient>(
     knots: &[f64],
-    points: &[Point<f64, D>],
+    control: &[T],
     p: usize,
     span: usize,
     count_a: usize,
     a: f64,
     b: f64,
-) -> SVector<f64, D> {
-    with_scratch(p + 1, SVector::zeros(), |s| {
-        for (dst, pt) in s.iter_mut().zip(&points[span - p..=span]) {
-            *dst = pt.coords;
-        }
+) -> T {
+    with_scratch(p + 1, control[0], |s| {
+        s.copy_from_slice(control);
         for level in 1..=p {
             let u = if level <= count_a { a } else { b };
             de_boor_level(knots, p, span, s, u, level);
         }
         s[p]
     })
+}
+
+/// The knot that inserting `t` `times` times into `knots` (degree `degree`,
+/// domain `domain`) inserts: `t` itself, or an existing knot within rounding
+/// (`4ε ×` the knot range) of it, so that the result satisfies the rules of
+/// [`BSpline::new`].
+///
+/// # Errors
+/// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside the domain;
+/// [`Error::KnotMultiplicity`] if the knot would then occur more than
+/// `degree + 1` times.
+pub(crate) fn knot_to_insert(
+    knots: &[f64],
+    degree: usize,
+    domain: (f64, f64),
+    t: f64,
+    times: usize,
+) -> Result<f64, Error> {
+    check_in_domain(t, domain)?;
+    // A parameter closer to an existing knot than rounding can resolve
+    // (see `Error::KnotGapTooSmall`) is that knot.
+    let min_gap = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
+    let t = knots
+        .iter()
+        .copied()
+        .find(|&k| (k - t).abs() < min_gap)
+        .unwrap_or(t);
+    let existing = knots.iter().filter(|&&k| k == t).count();
+    let multiplicity = existing.saturating_add(times);
+    if multiplicity > degree + 1 {
+        return Err(Error::KnotMultiplicity {
+            knot: t,
+            multiplicity,
+            max: degree + 1,
+        });
+    }
+    Ok(t)
+}
+
+/// One Boehm insertion of the knot `t` into knot span `k`
+/// (`t_k ≤ t ≤ t_{k+1}`, a non-empty span): the new control values are
+/// `Qⱼ = combine(Pⱼ₋₁, Pⱼ, αⱼ)`, meant as `(1 − αⱼ)Pⱼ₋₁ + αⱼPⱼ` with
+/// `αⱼ = (t − tⱼ)/(tⱼ₊ₚ − tⱼ)`, for `k − p < j ≤ k`; the others are kept
+/// (Piegl & Tiller, eq. 5.15). Returns the new knots and control values.
+/// Generic over the control values: points of a polynomial spline, points
+/// with weights of a rational one.
+pub(crate) fn boehm_insert<T: Copy>(
+    knots: &[f64],
+    p: usize,
+    k: usize,
+    t: f64,
+    control: &[T],
+    combine: impl Fn(T, T, f64) -> T,
+) -> (Vec<f64>, Vec<T>) {
+    let mut values = Vec::with_capacity(control.len() + 1);
+    values.extend_from_slice(&control[..=k - p]);
+    for j in (k - p + 1)..=k {
+        let alpha = (t - knots[j]) / (knots[j + p] - knots[j]);
+        values.push(combine(control[j - 1], control[j], alpha));
+    }
+    values.extend_from_slice(&control[k..]);
+    let mut new_knots = Vec::with_capacity(knots.len() + 1);
+    new_knots.extend_from_slice(&knots[..=k]);
+    new_knots.push(t);
+    new_knots.extend_from_slice(&knots[k + 1..]);
+    (new_knots, values)
 }
 
 /// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on
@@ -682,6 +681,57 @@ fn basis_up_to(
 #[inline]
 fn safe_div(num: f64, den: f64) -> f64 {
     if den > 0.0 { num / den } else { 0.0 }
+}
+
+/// Checks a knot vector for `n` control points of degree `degree`: the
+/// checks of [`BSpline::new`] after the points', in its order
+/// ([`Error::DegreeTooHigh`], [`Error::KnotCount`], [`Error::NonFiniteKnot`],
+/// [`Error::KnotTooLarge`], [`Error::DecreasingKnots`],
+/// [`Error::KnotGapTooSmall`], [`Error::KnotMultiplicity`],
+/// [`Error::EmptyDomain`]). Shared with the rational B-spline.
+pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), Error> {
+    if n <= degree {
+        return Err(Error::DegreeTooHigh { degree, points: n });
+    }
+    let expected = n + degree + 1;
+    if knots.len() != expected {
+        return Err(Error::KnotCount {
+            expected,
+            found: knots.len(),
+        });
+    }
+    for (index, &value) in knots.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(Error::NonFiniteKnot { index });
+        }
+        if value.abs() > crate::MAX_COORDINATE {
+            return Err(Error::KnotTooLarge { index, value });
+        }
+    }
+    if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
+        return Err(Error::DecreasingKnots { index });
+    }
+    let min = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
+    for index in 1..knots.len() {
+        let gap = knots[index] - knots[index - 1];
+        if gap > 0.0 && gap < min {
+            return Err(Error::KnotGapTooSmall { index, gap, min });
+        }
+    }
+    for run in knots.chunk_by(|a, b| a == b) {
+        if run.len() > degree + 1 {
+            return Err(Error::KnotMultiplicity {
+                knot: run[0],
+                multiplicity: run.len(),
+                max: degree + 1,
+            });
+        }
+    }
+    let (start, end) = (knots[degree], knots[n]);
+    if start >= end {
+        return Err(Error::EmptyDomain { start, end });
+    }
+    Ok(())
 }
 
 /// Checks the control points of the derivative splines of orders

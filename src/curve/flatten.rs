@@ -19,9 +19,24 @@
 //! for the rounding of the subdivided control points
 //! (`2ε · scale · (n + 1) · (depth + 1)`), so it holds for the exact curve, not
 //! only for its floating-point subdivision.
+//!
+//! Rational pieces (`Σ wᵢPᵢBᵢ / Σ wᵢBᵢ`, weights `wᵢ > 0`) are subdivided on
+//! their homogeneous points `(wᵢPᵢ, wᵢ)`. With positive weights the piece is,
+//! at every parameter, a convex combination of its control points (weights
+//! `wᵢBᵢ(t)/Σ wⱼBⱼ(t) ≥ 0`), so it lies in their convex hull (Farin, *Curves
+//! and Surfaces for CAGD*, §13.2; Piegl & Tiller, *The NURBS Book*, §4.2,
+//! property P4.9), and the same bound holds with the projected control
+//! points `Pᵢ`: `dist(C(t), [P₀, Pₙ]) ≤ maxᵢ dist(Pᵢ, [P₀, Pₙ])`. The
+//! second-derivative shortcut is not used for them (their `C″` is not a
+//! hodograph of the control points). Their rounding allowance is twice the
+//! polynomial one: the homogeneous coordinates `wP` and `w` are each rounded
+//! like polynomial control points, relative to `w·scale` and `w` (the weights
+//! are positive, so `w` is computed without cancellation), and the projection
+//! `wP/w` adds both relative errors.
 
 use super::CurveSample;
-use crate::bernstein::subdivide;
+use super::homogeneous::{Homogeneous, project, project_with_derivative};
+use crate::bernstein::{Coefficient, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
 use nalgebra::{Point, SVector};
@@ -56,6 +71,77 @@ pub struct Flattening<const D: usize> {
     pub bound: f64,
 }
 
+/// A control value of a Bézier piece as flattening uses it: a point of a
+/// polynomial piece, or a homogeneous point of a rational one.
+pub(crate) trait FlatControl<const D: usize>: Coefficient {
+    /// The multiple of the polynomial rounding allowance that covers the
+    /// rounding of subdivided values of this kind.
+    const ROUNDING_FACTOR: f64;
+
+    /// The point in space this value stands for.
+    fn position(self) -> SVector<f64, D>;
+
+    /// A bound on `max |C″(s)|` over the piece `c` in its own parameter
+    /// `s ∈ [0, 1]`, where one is known.
+    fn second_derivative_bound(c: &[Self]) -> Option<f64>;
+
+    /// The end point of the piece `c` on a parameter interval of width
+    /// `width`, and its derivative there (limit from the left).
+    fn end_sample(c: &[Self], width: f64) -> (Point<f64, D>, SVector<f64, D>);
+}
+
+impl<const D: usize> FlatControl<D> for SVector<f64, D> {
+    const ROUNDING_FACTOR: f64 = 1.0;
+
+    #[inline]
+    fn position(self) -> SVector<f64, D> {
+        self
+    }
+
+    fn second_derivative_bound(c: &[Self]) -> Option<f64> {
+        Some(second_derivative_bound(c))
+    }
+
+    fn end_sample(c: &[Self], width: f64) -> (Point<f64, D>, SVector<f64, D>) {
+        let n = c.len();
+        let end = c[n - 1];
+        let derivative = match n {
+            1 => SVector::zeros(),
+            _ => (end - c[n - 2]) * ((n - 1) as f64 / width),
+        };
+        (Point::from(end), derivative)
+    }
+}
+
+impl<const D: usize> FlatControl<D> for Homogeneous<D> {
+    const ROUNDING_FACTOR: f64 = 2.0;
+
+    #[inline]
+    fn position(self) -> SVector<f64, D> {
+        project(self).coords
+    }
+
+    fn second_derivative_bound(_: &[Self]) -> Option<f64> {
+        None
+    }
+
+    /// `C = A/w` and `C′ = (A′ − w′C)/w` from the last homogeneous point and
+    /// the last leg of the homogeneous hodograph, `(n − 1)(hₙ₋₁ − hₙ₋₂)/width`.
+    fn end_sample(c: &[Self], width: f64) -> (Point<f64, D>, SVector<f64, D>) {
+        let n = c.len();
+        let end = c[n - 1];
+        let leg = match n {
+            1 => Homogeneous::zero(),
+            _ => (end - c[n - 2]) * (n - 1) as f64,
+        };
+        let dh = Homogeneous {
+            wp: leg.wp / width,
+            w: leg.w / width,
+        };
+        project_with_derivative(end, dh)
+    }
+}
+
 /// What one refinement pass accumulates.
 struct Accumulator<'c, C, const D: usize> {
     curve: &'c C,
@@ -84,14 +170,27 @@ pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
     pieces: impl IntoIterator<Item = (&'a [Point<f64, D>], (f64, f64))>,
     tolerance: f64,
 ) -> Result<Flattening<D>, Error> {
+    flatten_controls(curve, pieces, |p| p.coords, tolerance)
+}
+
+/// Flattens `curve`, given as a sequence of Bézier pieces (control values
+/// `S`, loaded as the [`FlatControl`] values `load(s)`, and the parameter
+/// interval each covers), to `tolerance`: polynomial pieces from their
+/// points, rational pieces from their homogeneous points.
+pub(crate) fn flatten_controls<'a, C: Curve<D>, S: 'a, T: FlatControl<D>, const D: usize>(
+    curve: &C,
+    pieces: impl IntoIterator<Item = (&'a [S], (f64, f64))>,
+    load: impl Fn(&S) -> T,
+    tolerance: f64,
+) -> Result<Flattening<D>, Error> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidTolerance { tolerance });
     }
     let pieces: Vec<_> = pieces.into_iter().collect();
     let scale = pieces
         .iter()
-        .flat_map(|(points, _)| points.iter())
-        .map(|p| p.coords.amax())
+        .flat_map(|(values, _)| values.iter())
+        .map(|s| load(s).position().amax())
         .fold(0.0, f64::max);
     let min = MIN_RELATIVE_TOLERANCE * scale;
     if tolerance < min {
@@ -104,23 +203,19 @@ pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
         bound: 0.0,
         samples: Vec::new(),
     };
-    for (k, &(points, (a, b))) in pieces.iter().enumerate() {
-        let n = points.len();
-        with_scratch(n, SVector::zeros(), |c| {
-            for (dst, p) in c.iter_mut().zip(points) {
-                *dst = p.coords;
+    for (k, &(values, (a, b))) in pieces.iter().enumerate() {
+        let n = values.len();
+        let (end, derivative) = with_scratch(n, load(&values[0]), |c| {
+            for (dst, s) in c.iter_mut().zip(values) {
+                *dst = load(s);
             }
-            refine(&mut acc, c, a, b, 0)
+            refine(&mut acc, c, a, b, 0)?;
+            Ok::<_, Error>(T::end_sample(c, b - a))
         })?;
-        let end = points[n - 1];
-        let next_start = pieces.get(k + 1).map(|(p, _)| p[0]);
-        if next_start.is_some_and(|s| (s - end).norm() > JOIN_ROUNDING * acc.scale) {
+        let next_start = pieces.get(k + 1).map(|(s, _)| load(&s[0]).position());
+        if next_start.is_some_and(|s| (s - end.coords).norm() > JOIN_ROUNDING * acc.scale) {
             // A jump (of any size beyond rounding): close this piece with its
             // limit from the left, so the polyline follows the jump.
-            let derivative = match n {
-                1 => SVector::zeros(),
-                _ => (end - points[n - 2]) * ((n - 1) as f64 / (b - a)),
-            };
             acc.samples.push(CurveSample {
                 t: b,
                 point: end,
@@ -137,9 +232,9 @@ pub(crate) fn flatten_pieces<'a, C: Curve<D>, const D: usize>(
 
 /// Certifies the piece `c` (covering `[a, b]`) or splits it at its midpoint.
 /// Pushes the start sample of every certified piece.
-fn refine<C: Curve<D>, const D: usize>(
+fn refine<C: Curve<D>, T: FlatControl<D>, const D: usize>(
     acc: &mut Accumulator<'_, C, D>,
-    c: &[SVector<f64, D>],
+    c: &[T],
     a: f64,
     b: f64,
     depth: u32,
@@ -148,8 +243,9 @@ fn refine<C: Curve<D>, const D: usize>(
     // Rounding of the subdivided control points, plus the rounding gap a
     // continuous join may show between two spans' end points (the polyline
     // runs to the next span's start).
-    let rounding = 2.0 * f64::EPSILON * acc.scale * n as f64 * f64::from(depth + 1)
-        + JOIN_ROUNDING * acc.scale;
+    let rounding =
+        T::ROUNDING_FACTOR * 2.0 * f64::EPSILON * acc.scale * n as f64 * f64::from(depth + 1)
+            + JOIN_ROUNDING * acc.scale;
     let bound = hull_to_chord_distance(c) + rounding;
     if bound <= acc.tolerance {
         acc.bound = acc.bound.max(bound);
@@ -171,8 +267,8 @@ fn refine<C: Curve<D>, const D: usize>(
         });
     }
     let mid = 0.5 * (a + b);
-    with_scratch(n, SVector::zeros(), |left| {
-        with_scratch(n, SVector::zeros(), |right| {
+    with_scratch(n, c[0], |left| {
+        with_scratch(n, c[0], |right| {
             subdivide(c, 0.5, left, right);
             refine(acc, left, a, mid, depth + 1)?;
             refine(acc, right, mid, b, depth + 1)
@@ -194,11 +290,14 @@ const MAX_UNIFORM_PARTS: usize = 12;
 /// the Green's function `G ≥ 0`, `∫ G = (s − s₀)(s₁ − s)/2 ≤ w²/8`, so
 /// `|e| ≤ w²/8 · max|C″|` ([`second_derivative_bound`]); the chord point
 /// `L(s)` is on the segment, so this bounds the distance to it too.
-fn uniform_parts<const D: usize>(c: &[SVector<f64, D>], tolerance: f64) -> Option<(usize, f64)> {
+fn uniform_parts<T: FlatControl<D>, const D: usize>(
+    c: &[T],
+    tolerance: f64,
+) -> Option<(usize, f64)> {
     if c.len() < 3 || tolerance.is_nan() || tolerance <= 0.0 {
         return None;
     }
-    let second = second_derivative_bound(c);
+    let second = T::second_derivative_bound(c)?;
     let parts = (second / (8.0 * tolerance)).sqrt().ceil();
     if !(parts.is_finite() && parts >= 1.0 && parts <= MAX_UNIFORM_PARTS as f64) {
         return None;
@@ -225,16 +324,18 @@ fn second_derivative_bound<const D: usize>(c: &[SVector<f64, D>]) -> f64 {
     n * (n - 1.0) * max
 }
 
-/// `maxᵢ dist(cᵢ, [c₀, cₙ])`: how far the control polygon strays from the chord.
-fn hull_to_chord_distance<const D: usize>(c: &[SVector<f64, D>]) -> f64 {
+/// `maxᵢ dist(cᵢ, [c₀, cₙ])`: how far the control polygon strays from the
+/// chord (with the control points' [positions](FlatControl::position)).
+fn hull_to_chord_distance<T: FlatControl<D>, const D: usize>(c: &[T]) -> f64 {
     let (Some(&first), Some(&last)) = (c.first(), c.last()) else {
         return 0.0;
     };
+    let (first, last) = (first.position(), last.position());
     let chord = last - first;
     let len2 = chord.norm_squared();
     c.iter()
         .map(|&p| {
-            let w = p - first;
+            let w = p.position() - first;
             let s = if len2 > 0.0 {
                 (w.dot(&chord) / len2).clamp(0.0, 1.0)
             } else {

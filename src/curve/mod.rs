@@ -24,6 +24,7 @@ mod bezier;
 mod bspline;
 mod flatten;
 mod homogeneous;
+mod nurbs;
 mod pieces;
 mod rational_bezier;
 
@@ -31,9 +32,8 @@ pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
-#[allow(unused_imports)] // for Nurbs (issue 17, in progress)
 pub(crate) use homogeneous::{Homogeneous, quotient_rule};
-#[allow(unused_imports)] // for Nurbs (issue 17, in progress)
+pub use nurbs::{MAX_DERIVATIVE_ORDER, Nurbs};
 pub(crate) use rational_bezier::validate_weights;
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 

@@ -14,36 +14,38 @@
 //! `⌊(t − b₀)·m/(b_m − b₀)⌋` corrected by comparing with the neighbouring
 //! break points: constant time whatever the number of control points.
 
-use nalgebra::SVector;
-
-/// The Bézier pieces of a B-spline and how to find them.
+/// The Bézier pieces of a B-spline and how to find them. The control values
+/// `T` are vectors for a polynomial spline and homogeneous points for a
+/// rational one.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct PieceTable<const D: usize> {
+pub(crate) struct PieceTable<T> {
     /// `b₀ < b₁ < … < b_m`: the distinct knot values of the domain.
     breaks: Vec<f64>,
     /// For piece `j`, the index `i` of its knot span `[tᵢ, tᵢ₊₁)`.
     spans: Vec<usize>,
     /// `p + 1` Bézier control points per piece, piece after piece.
-    coeffs: Vec<SVector<f64, D>>,
+    coeffs: Vec<T>,
     /// `m/(b_m − b₀)` when the break points are equally spaced to rounding.
     uniform_scale: Option<f64>,
     /// Control points per piece: `p + 1`.
     width: usize,
 }
 
-impl<const D: usize> PieceTable<D> {
+impl<T: Copy> PieceTable<T> {
     /// Builds the table for the non-empty spans `i` in `p..n` of `knots`,
-    /// taking each span's Bézier control points from `bezier_points(i, out)`.
+    /// taking each span's Bézier control points from `bezier_points(i, out)`
+    /// (`out` is filled with `zero` before).
     pub(crate) fn new(
         degree: usize,
         knots: &[f64],
         n: usize,
-        mut bezier_points: impl FnMut(usize, &mut [SVector<f64, D>]),
+        zero: T,
+        mut bezier_points: impl FnMut(usize, &mut [T]),
     ) -> Self {
         let spans: Vec<usize> = (degree..n).filter(|&i| knots[i] < knots[i + 1]).collect();
         let mut breaks: Vec<f64> = spans.iter().map(|&i| knots[i]).collect();
         breaks.push(knots[n]);
-        let mut coeffs = vec![SVector::zeros(); spans.len() * (degree + 1)];
+        let mut coeffs = vec![zero; spans.len() * (degree + 1)];
         for (&i, chunk) in spans.iter().zip(coeffs.chunks_exact_mut(degree + 1)) {
             bezier_points(i, chunk);
         }
@@ -105,7 +107,7 @@ impl<const D: usize> PieceTable<D> {
 
     /// The Bézier control points of piece `j`.
     #[inline]
-    pub(crate) fn coeffs(&self, j: usize) -> &[SVector<f64, D>] {
+    pub(crate) fn coeffs(&self, j: usize) -> &[T] {
         &self.coeffs[j * self.width..(j + 1) * self.width]
     }
 }
