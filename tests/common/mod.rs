@@ -13,7 +13,7 @@
 //!   counting (each test binary declares the `#[global_allocator]` itself).
 //! - [`assert_close`].
 //! - Rational revolutions: [`conic_profiles`] (the sphere's and the torus's
-//!   exact conic profiles), [`closed_forms`] (their ray equations with exact
+//!   NURBS profiles), [`closed_forms`] (their ray equations with exact
 //!   coefficients) and [`exact_roots`] (exact real-root isolation).
 
 #![allow(dead_code)]
