@@ -9,16 +9,17 @@
 //! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
 //! ```
 //!
-//! `ray_profile [glass|vase|cylinder] [N] [--perpendicular] [--report]`: the shape
-//! (default glass), the number of rays (default 100 000), rays perpendicular
+//! `ray_profile [glass|vase|cylinder|sphere|torus] [N] [--perpendicular] [--report]`:
+//! the shape (default glass; the sphere and the torus are rational revolutions
+//! of NURBS arcs), the number of rays (default 100 000), rays perpendicular
 //! to the axis instead of in any direction, and the per-ray report.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
 use common::Rng;
-use revolve::nalgebra::Vector3;
-use revolve::{BSpline, Bezier, Intersect, Ray, Revolution};
+use revolve::nalgebra::{Point2, Vector3};
+use revolve::{BSpline, Bezier, Intersect, Nurbs, Ray, Revolution};
 
 /// One of the profiled shapes.
 enum Shape {
@@ -26,6 +27,22 @@ enum Shape {
     /// The vase, or the cylinder of radius 1 and height 2 (a degree-1
     /// profile: the floor of what the intersector's machinery costs).
     Bezier(Revolution<Bezier<2>>),
+    /// The unit sphere (a half circle, two rational quarter arcs) or the
+    /// torus of radii 1 and 0.25 (a full circle, four quarter arcs).
+    Nurbs(Revolution<Nurbs<2>>),
+}
+
+/// The unit sphere as a rational revolution.
+fn sphere() -> Result<Shape, String> {
+    let half = std::f64::consts::FRAC_PI_2;
+    let arc = Nurbs::arc(Point2::origin(), 1.0, -half, half).map_err(|e| e.to_string())?;
+    Ok(Shape::Nurbs(Revolution::new(arc)))
+}
+
+/// The torus of radii 1 and 0.25 as a rational revolution.
+fn torus() -> Result<Shape, String> {
+    let circle = Nurbs::circle(Point2::new(1.0, 0.0), 0.25).map_err(|e| e.to_string())?;
+    Ok(Shape::Nurbs(Revolution::new(circle)))
 }
 
 fn main() -> Result<(), String> {
@@ -36,18 +53,21 @@ fn main() -> Result<(), String> {
             "glass" => shape = Shape::Glass(Revolution::new(common::wine_glass())),
             "vase" => shape = Shape::Bezier(Revolution::new(common::vase())),
             "cylinder" => shape = Shape::Bezier(common::bezier(&common::CYLINDER)),
+            "sphere" => shape = sphere()?,
+            "torus" => shape = torus()?,
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
             count => {
                 n = count
                     .parse()
-                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, a ray count, --perpendicular or --report"))?
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, a ray count, --perpendicular or --report"))?
             }
         }
     }
     let bounds = match &shape {
         Shape::Glass(s) => s.bounds(),
         Shape::Bezier(s) => s.bounds(),
+        Shape::Nurbs(s) => s.bounds(),
     };
     let mut rng = Rng(7);
     let radius = 2.0 * bounds.extent().norm();
@@ -73,6 +93,7 @@ fn main() -> Result<(), String> {
             let (hit, r) = match &shape {
                 Shape::Glass(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
                 Shape::Bezier(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
+                Shape::Nurbs(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
             };
             for (total, x) in totals.iter_mut().zip([
                 r.spans_entered,
@@ -88,6 +109,7 @@ fn main() -> Result<(), String> {
             match &shape {
                 Shape::Glass(s) => s.intersect(ray, 0.0, f64::INFINITY),
                 Shape::Bezier(s) => s.intersect(ray, 0.0, f64::INFINITY),
+                Shape::Nurbs(s) => s.intersect(ray, 0.0, f64::INFINITY),
             }
         };
         hits += usize::from(hit.is_some());

@@ -29,7 +29,13 @@
 //!   by Newton's method for other profiles, and [`NewtonIntersector`] for
 //!   any [`BoundedSurface`]; accuracy is a [`Tolerance`];
 //! - feature `testing`: proptest strategies and law checkers for your own
-//!   curves and surfaces.
+//!   curves and surfaces;
+//! - feature `serde`: `Serialize` and `Deserialize` for the curves,
+//!   [`Revolution`], [`Ray`], [`Tolerance`] and [`Aabb`], written as their
+//!   defining data (a revolution's intersector tables are rebuilt when it is
+//!   read) and read back through the public constructors, so that bad data
+//!   is an error with the crate's [`Error`] message and a deserialized value
+//!   is as valid as a constructed one.
 //!
 //! Bad input is an [`Error`] value, never a panic; evaluation never returns
 //! NaN (parameters are moved into the domain, see [`Curve`]). Evaluation does
@@ -73,6 +79,8 @@ mod error;
 pub mod ray;
 pub mod roots;
 mod scratch;
+#[cfg(feature = "serde")]
+mod serde_impls;
 pub mod surface;
 #[cfg(feature = "testing")]
 pub mod testing;

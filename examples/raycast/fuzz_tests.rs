@@ -202,6 +202,18 @@ const SPLICES: &[(&str, Option<&str>)] = &[
         Some("Group"),
     ),
     (
+        "RevSurface { profile NurbsCurve { degree 2 knots 0 0 0 1 1 1 controls [ 1e99 0 0 1e-4 ] [ 1e99 1e99 0 1e4 ] [ 0 1e99 0 ] } }",
+        Some("Group"),
+    ),
+    (
+        "RevSurface { profile NurbsCurve { degree 2 knots 0 0 0 1 1 1 controls [ 1e-300 0 0 ] [ 1 1e-300 0 1e4 ] [ 1e-300 2 0 ] } }",
+        Some("Group"),
+    ),
+    (
+        "NurbsCurve { degree 3 knots -1e100 -1e100 -1e100 -1e100 1e100 1e100 1e100 1e100 controls [ 0 0 0 ] [ 1 0 0 1e8 ] [ 1 1 1 ] [ 0 1 0 1e-300 ] }",
+        Some("Group"),
+    ),
+    (
         "PointLight { position 0 0 0 color 1e100 1e100 1e100 }",
         Some("Lights"),
     ),

@@ -24,7 +24,7 @@ use crate::render::{Options, render};
 
 /// The bundled scenes in the base format (the showcase uses effects and
 /// random sampling, and is covered by the rendering tests instead).
-const BASE_SCENES: [&str; 5] = ["basic", "vase", "wine_glass", "curves", "mesh"];
+const BASE_SCENES: [&str; 6] = ["basic", "vase", "wine_glass", "curves", "mesh", "nurbs"];
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")

@@ -38,6 +38,7 @@
 //!             | Ring { center P  normal V  inner R  outer R }
 //!             | Rectangle { corner P  edge1 V  edge2 V }
 //! curve       = (BezierCurve | BsplineCurve) { controls [x y z]… }
+//!             | NurbsCurve { degree p  knots k…  controls [x y z w]… }   ([x y z]: w = 1)
 //! Render      { [samples N] [maxDepth N] [shadows true|false]
 //!               [integrator whitted|path] [toneMap clamp|reinhard] }
 //! ```

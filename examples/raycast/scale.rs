@@ -89,6 +89,7 @@ pub fn scene_scale(scene: &Scene) -> f64 {
                 let b = match body.as_ref() {
                     RevolutionBody::Bezier(r) => r.bounds(),
                     RevolutionBody::BSpline(r) => r.bounds(),
+                    RevolutionBody::Nurbs(r) => r.bounds(),
                 };
                 if !b.is_empty() {
                     for i in 0..8 {

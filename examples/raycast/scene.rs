@@ -8,7 +8,7 @@
 use std::sync::Arc;
 
 use revolve::nalgebra::{Matrix4, Point3, Vector3};
-use revolve::{BSpline, Bezier, Revolution};
+use revolve::{BSpline, Bezier, Nurbs, Revolution};
 
 /// Linear RGB, nominally in `[0, 1]` (light colours may exceed 1).
 pub type Color = Vector3<f64>;
@@ -105,6 +105,7 @@ pub struct TriangleMesh {
 pub enum RevolutionBody {
     Bezier(Revolution<Bezier<2>>),
     BSpline(Revolution<BSpline<2>>),
+    Nurbs(Revolution<Nurbs<2>>),
 }
 
 /// A curve drawn directly in a group: rendered as a thin tube along

@@ -228,12 +228,7 @@ impl<const D: usize> BSpline<D> {
         with_scratch(p + 1, SVector::zeros(), |s| {
             self.load_span(span, s);
             for r in 1..=order {
-                let scale = (p - r + 1) as f64;
-                for j in 0..=(p - r) {
-                    // Control point span − p + j of the r-th derivative spline.
-                    let den = knots[span + j + 1] - knots[span - p + j + r];
-                    s[j] = (s[j + 1] - s[j]) / den * scale;
-                }
+                derivative_control_step(knots, p, span, s, r);
             }
             let q = p - order;
             de_boor_levels(knots, q, span, &mut s[..=q], t, q);
@@ -611,11 +606,35 @@ pub(crate) fn boehm_insert<T: Copy>(
     (new_knots, values)
 }
 
+/// Replaces the control values of the `(r − 1)`-th derivative spline that act
+/// on `span`, in `s[..=p − r + 1]`, by those of the `r`-th, in `s[..=p − r]`:
+/// `Q⁽ʳ⁾ⱼ = (Q⁽ʳ⁻¹⁾ⱼ₊₁ − Q⁽ʳ⁻¹⁾ⱼ)/(t_{j+p+1} − t_{j+r})·(p − r + 1)` (Piegl &
+/// Tiller eq. 3.8; the knot difference contains the non-empty span, so it is
+/// positive). Generic: vectors for a polynomial spline, homogeneous points
+/// for a rational one.
+#[inline(always)]
+pub(crate) fn derivative_control_step<T>(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    s: &mut [T],
+    r: usize,
+) where
+    T: crate::bernstein::Coefficient + std::ops::Div<f64, Output = T>,
+{
+    let scale = (p - r + 1) as f64;
+    for j in 0..=(p - r) {
+        // Control value span − p + j of the r-th derivative spline.
+        let den = knots[span + j + 1] - knots[span - p + j + r];
+        s[j] = (s[j + 1] - s[j]) / den * scale;
+    }
+}
+
 /// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on
 /// `s[0..=q]`, which holds the coefficients with global indices
 /// `span − q … span`. After `q` levels `s[q]` is the value.
 #[inline(always)]
-fn de_boor_levels<T: crate::bernstein::Coefficient>(
+pub(crate) fn de_boor_levels<T: crate::bernstein::Coefficient>(
     knots: &[f64],
     q: usize,
     span: usize,
@@ -740,7 +759,7 @@ pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(
 /// within [`MAX_DERIVATIVE`]. Points whose knot difference is zero (their basis
 /// function vanishes; no non-empty span uses them) are skipped, and so is
 /// everything computed from them.
-fn check_derivative_points<const D: usize>(
+pub(crate) fn check_derivative_points<const D: usize>(
     degree: usize,
     knots: &[f64],
     points: &[Point<f64, D>],

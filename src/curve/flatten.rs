@@ -134,11 +134,7 @@ impl<const D: usize> FlatControl<D> for Homogeneous<D> {
             1 => Homogeneous::zero(),
             _ => (end - c[n - 2]) * (n - 1) as f64,
         };
-        let dh = Homogeneous {
-            wp: leg.wp / width,
-            w: leg.w / width,
-        };
-        project_with_derivative(end, dh)
+        project_with_derivative(end, leg / width)
     }
 }
 

@@ -31,7 +31,7 @@ mod rational_bezier;
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
 pub use flatten::Flattening;
-pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
+pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 pub(crate) use homogeneous::{Homogeneous, quotient_rule};
 pub use nurbs::{MAX_DERIVATIVE_ORDER, Nurbs};
 pub(crate) use rational_bezier::validate_weights;

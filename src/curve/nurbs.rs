@@ -11,7 +11,10 @@
 //! (blossoming, knot insertion, de Casteljau, hodographs) runs on the
 //! homogeneous points; the division comes last.
 
-use super::bspline::{blossom, boehm_insert, knot_to_insert, validate_knots};
+use super::bspline::{
+    blossom, boehm_insert, check_derivative_points, de_boor_levels, derivative_control_step,
+    knot_to_insert, validate_knots,
+};
 use super::flatten::{Flattening, flatten_controls};
 use super::homogeneous::{project, project_with_derivative};
 use super::pieces::PieceTable;
@@ -22,8 +25,9 @@ use super::{
 use crate::bernstein::{self, lerp};
 use crate::scratch::with_scratch;
 use crate::{BSpline, Bezier, BezierSpan, Curve, Error, RationalBezier, RationalBezierSpan};
-use nalgebra::{Point, Point2, SVector, Unit, Vector1, Vector2};
+use nalgebra::{Point, Point1, Point2, SVector, Unit, Vector1, Vector2};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, TAU};
+use std::ops::Div;
 
 /// The highest derivative order [`Nurbs::derivatives`] and
 /// [`Nurbs::nth_derivative`] compute (`1024`). A rational curve's
@@ -77,9 +81,14 @@ pub struct Nurbs<const D: usize> {
     knots: Vec<f64>,
     points: Vec<Point<f64, D>>,
     weights: Vec<f64>,
+    /// `(wᵢPᵢ, wᵢ)` with the weights scaled by a power of two (exactly) so
+    /// that the largest is in `[1, 2)`; all 1 when the curve is polynomial.
+    homogeneous: Vec<Homogeneous<D>>,
     /// The rational Bézier form of every non-empty span as homogeneous
-    /// points, scaled so that the piece's largest weight is 1 (exactly 1
-    /// for all of them when the curve is polynomial).
+    /// points, scaled by a power of two so that the piece's largest weight
+    /// is in `[1, 2)` (exactly 1 for all of them when the curve is
+    /// polynomial). Exact scaling keeps the end points of clamped curves
+    /// exact where the weight there is a power of two times the largest.
     pieces: PieceTable<Homogeneous<D>>,
     /// The control points' bounding box, which contains the curve.
     bounds: (Point<f64, D>, Point<f64, D>),
@@ -144,6 +153,16 @@ impl<const D: usize> Nurbs<D> {
         weights: Vec<f64>,
     ) -> Result<Self, Error> {
         let curve = Self::from_valid_parts(degree, knots, points, weights);
+        // The homogeneous derivative splines, coordinate by coordinate (the
+        // operations are), as `derivatives` computes them.
+        let wp: Vec<Point<f64, D>> = curve
+            .homogeneous
+            .iter()
+            .map(|h| Point::from(h.wp))
+            .collect();
+        check_derivative_points(degree, &curve.knots, &wp)?;
+        let w: Vec<Point1<f64>> = curve.homogeneous.iter().map(|h| Point1::new(h.w)).collect();
+        check_derivative_points(degree, &curve.knots, &w)?;
         for j in 0..curve.pieces.len() {
             let (a, b) = curve.pieces.interval(j);
             let c = curve.pieces.coeffs(j);
@@ -164,11 +183,11 @@ impl<const D: usize> Nurbs<D> {
         weights: Vec<f64>,
     ) -> Self {
         let polynomial = weights.iter().all(|&w| w == weights[0]);
-        let top = weights.iter().fold(0.0_f64, |m, &w| m.max(w));
+        let scale = weight_scale(&weights);
         let homogeneous: Vec<Homogeneous<D>> = points
             .iter()
             .zip(&weights)
-            .map(|(p, &w)| Homogeneous::new(p, w / top))
+            .map(|(p, &w)| Homogeneous::new(p, if polynomial { 1.0 } else { w / scale }))
             .collect();
         let pieces = PieceTable::new(
             degree,
@@ -188,8 +207,8 @@ impl<const D: usize> Nurbs<D> {
                     // the B-spline's Bézier points, computed as it does).
                     out.iter_mut().for_each(|h| h.w = 1.0);
                 } else {
-                    let top = out.iter().fold(0.0_f64, |m, h| m.max(h.w));
-                    out.iter_mut().for_each(|h| *h = divided(*h, top));
+                    let scale = power_of_two_near(out.iter().fold(0.0_f64, |m, h| m.max(h.w)));
+                    out.iter_mut().for_each(|h| *h = *h / scale);
                 }
             },
         );
@@ -199,6 +218,7 @@ impl<const D: usize> Nurbs<D> {
             knots,
             points,
             weights,
+            homogeneous,
             pieces,
             bounds,
             polynomial,
@@ -234,15 +254,17 @@ impl<const D: usize> Nurbs<D> {
 
     /// The derivatives `C, C′, …, C⁽ᵏ⁾` at `t`, `k = out.len() − 1`.
     ///
-    /// The homogeneous derivatives `(A⁽ʲ⁾, w⁽ʲ⁾)` are the piece's hodographs
-    /// in `t` (`(n − j + 1)·Δ/(b − a)` per order, zero above the degree),
-    /// and `C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σ_{j=1}^{k} C(k, j) w⁽ʲ⁾ C⁽ᵏ⁻ʲ⁾)/w` (Piegl & Tiller
+    /// The homogeneous derivatives `(A⁽ʲ⁾, w⁽ʲ⁾)` come from de Boor's
+    /// algorithm on the control points of the homogeneous derivative spline
+    /// of order `j` (differences of the span's `(wᵢPᵢ, wᵢ)` divided by knot
+    /// spacings, Piegl & Tiller eq. 3.8, as [`BSpline::nth_derivative`]; zero
+    /// above the degree), and `C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σ_{j=1}^{k} C(k, j) w⁽ʲ⁾ C⁽ᵏ⁻ʲ⁾)/w` (Piegl & Tiller
     /// eq. 4.8). Unlike a polynomial's, a rational curve's derivatives do not
     /// vanish above the degree (those of a curve with equal weights do, and
     /// are the [`BSpline`]'s). `t` is moved into the domain first (NaN to the
     /// start); at an interior knot the derivatives are those from the right,
     /// at the end of the domain those from the left. No heap allocation for
-    /// `out.len() + degree ≤ 101`.
+    /// `out.len() + 2·degree ≤ 100`.
     ///
     /// # Errors
     /// [`Error::DerivativeOrderTooHigh`] if `out.len() − 1` exceeds
@@ -276,28 +298,26 @@ impl<const D: usize> Nurbs<D> {
                 max: MAX_DERIVATIVE_ORDER,
             });
         }
+        let p = self.degree;
         let t = clamp_to_domain(t, self.domain());
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let width = b - a;
-        let u = (t - a) / width;
-        let c = self.pieces.coeffs(j);
-        with_scratch(orders + c.len(), Homogeneous::zero(), |s| {
-            let (h, work) = s.split_at_mut(orders);
-            work.copy_from_slice(c);
-            let mut len = c.len();
-            for hk in h.iter_mut() {
-                if len == 0 {
+        let span = self.pieces.span(self.pieces.locate(t));
+        let knots = &self.knots;
+        with_scratch(orders + 2 * (p + 1), Homogeneous::zero(), |s| {
+            let (h, rest) = s.split_at_mut(orders);
+            let (control, work) = rest.split_at_mut(p + 1);
+            control.copy_from_slice(&self.homogeneous[span - p..=span]);
+            for (k, hk) in h.iter_mut().enumerate() {
+                if k > p {
                     *hk = Homogeneous::zero();
                     continue;
                 }
-                *hk = bernstein::eval(&work[..len], u).unwrap_or_else(Homogeneous::zero);
-                // The next hodograph in t, computed as `check_piece` bounds it.
-                let m = len - 1;
-                for i in 0..m {
-                    work[i] = divided((work[i + 1] - work[i]) * m as f64, width);
+                if k > 0 {
+                    derivative_control_step(knots, p, span, control, k);
                 }
-                len = m;
+                let q = p - k;
+                work[..=q].copy_from_slice(&control[..=q]);
+                de_boor_levels(knots, q, span, &mut work[..=q], t, q);
+                *hk = work[q];
             }
             if self.polynomial {
                 for (o, hk) in out.iter_mut().zip(h.iter()) {
@@ -362,7 +382,7 @@ impl<const D: usize> Nurbs<D> {
     fn insert_once(&self, t: f64) -> Result<Nurbs<D>, Error> {
         let p = self.degree;
         let k = self.pieces.span(self.pieces.locate(t));
-        let top = self.weights.iter().fold(0.0_f64, |m, &w| m.max(w));
+        let scale = weight_scale(&self.weights);
         let control: Vec<(Point<f64, D>, f64)> = self
             .points
             .iter()
@@ -377,8 +397,8 @@ impl<const D: usize> Nurbs<D> {
             &control,
             |(pa, wa), (pb, wb), alpha| {
                 let h = lerp(
-                    Homogeneous::new(&pa, wa / top),
-                    Homogeneous::new(&pb, wb / top),
+                    Homogeneous::new(&pa, wa / scale),
+                    Homogeneous::new(&pb, wb / scale),
                     alpha,
                 );
                 let point = clamp_to_box(project(h).coords, point_bounds(&[pa, pb]));
@@ -633,7 +653,7 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
         let (p, d) = if self.polynomial {
             (h.wp, dh.wp / width)
         } else {
-            let (p, d) = project_with_derivative(h, divided(dh, width));
+            let (p, d) = project_with_derivative(h, dh / width);
             (p.coords, d)
         };
         (Point::from(clamp_to_box(p, self.bounds)), d)
@@ -690,13 +710,35 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
     }
 }
 
-/// `h` with both coordinates divided by `s` (division, not multiplication by
-/// `1/s`, which could overflow for tiny `s`).
-#[inline(always)]
-fn divided<const D: usize>(h: Homogeneous<D>, s: f64) -> Homogeneous<D> {
-    Homogeneous {
-        wp: h.wp / s,
-        w: h.w / s,
+impl<const D: usize> Div<f64> for Homogeneous<D> {
+    type Output = Self;
+    /// Both coordinates divided by `s` (division, not multiplication by
+    /// `1/s`, which could overflow for tiny `s`).
+    #[inline(always)]
+    fn div(self, s: f64) -> Self {
+        Homogeneous {
+            wp: self.wp / s,
+            w: self.w / s,
+        }
+    }
+}
+
+/// The power of two by which the weights are divided: the largest weight
+/// becomes a number in `[1, 2)`, the others are scaled exactly.
+fn weight_scale(weights: &[f64]) -> f64 {
+    power_of_two_near(weights.iter().fold(0.0_f64, |m, &w| m.max(w)))
+}
+
+/// `2^⌊log₂ x⌋` for a positive finite `x` (subnormal ones too): a power of
+/// two within a factor 2 of `x`, by which division is exact. Rounding of the
+/// logarithm can only make it `x`'s neighbouring power, still within a
+/// factor 2.
+fn power_of_two_near(x: f64) -> f64 {
+    let e = (x.log2().floor() as i32).clamp(-1074, 1023);
+    if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1_u64 << (e + 1074))
     }
 }
 

@@ -14,7 +14,7 @@
 //!
 //! of the mesh; the tolerance is split evenly between the two terms.
 
-use crate::curve::{MIN_RELATIVE_TOLERANCE, flatten_pieces};
+use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 use crate::error::try_with_capacity;
 use crate::surface::revolution::profile_normal;
 use crate::{Curve, Error, Revolution};
@@ -101,7 +101,7 @@ impl<C: Curve<2>> Revolution<C> {
     /// angular steps reach, or where the mesh would exceed 2²⁴ vertices (its
     /// `min` is a tolerance that fits, see [`Mesh::MAX_VERTICES`]);
     /// [`Error::NotPiecewisePolynomial`] for a profile without usable
-    /// [Bézier spans](Curve::bezier_spans) (none, so no certified bound is
+    /// [(rational) Bézier spans](Curve::rational_bezier_spans) (none, so no certified bound is
     /// possible, or spans that give samples with a NaN or infinite value);
     /// [`Error::AllocationFailed`] if the memory for the mesh cannot be had.
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
@@ -192,7 +192,7 @@ impl<C: Curve<2>> Revolution<C> {
         }
         let spans = self
             .profile()
-            .bezier_spans()
+            .rational_bezier_spans()
             .ok_or(Error::NotPiecewisePolynomial)?;
         let scale = spans
             .iter()
@@ -209,11 +209,36 @@ impl<C: Curve<2>> Revolution<C> {
         if tolerance < min {
             return Err(Error::ToleranceTooSmall { tolerance, min });
         }
-        let flat = flatten_pieces(
-            self.profile(),
-            spans.iter().map(|s| (s.curve.points(), s.knots)),
-            0.5 * tolerance,
-        )?;
+        let flat = if spans.iter().all(|s| s.curve.is_polynomial()) {
+            flatten_pieces(
+                self.profile(),
+                spans.iter().map(|s| (s.curve.points(), s.knots)),
+                0.5 * tolerance,
+            )?
+        } else {
+            // Rational pieces are flattened from their homogeneous points,
+            // with the bound that holds for them (see `Flattening`).
+            let homogeneous: Vec<Vec<Homogeneous<2>>> = spans
+                .iter()
+                .map(|s| {
+                    let c = &s.curve;
+                    c.points()
+                        .iter()
+                        .zip(c.weights())
+                        .map(|(p, &w)| Homogeneous::new(p, w))
+                        .collect()
+                })
+                .collect();
+            flatten_controls(
+                self.profile(),
+                homogeneous
+                    .iter()
+                    .zip(&spans)
+                    .map(|(h, s)| (&h[..], s.knots)),
+                |h| *h,
+                0.5 * tolerance,
+            )?
+        };
         // Spans that pass the contract check but still sample to non-finite
         // values must not become NaN vertices.
         let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());

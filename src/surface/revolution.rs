@@ -40,11 +40,16 @@ use std::f64::consts::TAU;
 /// A revolution can be placed anywhere with [`with_axis`](Self::with_axis).
 ///
 /// # Which profiles, and what ray intersection guarantees
-/// - **Profiles with [Bézier spans](Curve::bezier_spans)** ([`Bezier`],
-///   [`BSpline`], or your own type that provides them; spans of different
-///   degrees are raised to the highest): the exact intersector. Certified:
-///   every transversal hit is found, no false hit is reported, the nearest in
-///   `(t_min, t_max)` to the [`Tolerance`].
+/// - **Profiles with [Bézier spans](Curve::bezier_spans) or
+///   [rational Bézier spans](Curve::rational_bezier_spans)** ([`Bezier`],
+///   [`BSpline`], [`RationalBezier`], [`Nurbs`], or your own type that
+///   provides them; spans of different degrees are raised to the highest):
+///   the exact intersector. Certified: every transversal hit is found, no
+///   false hit is reported, the nearest in `(t_min, t_max)` to the
+///   [`Tolerance`]. A rational profile makes exact spheres (a half circle
+///   about the axis), tori (an off-axis circle) and lathed parts; its hit
+///   condition is multiplied by `W²` and stays one polynomial of degree `2n`
+///   per span.
 /// - **Any other [`Curve<2>`]** (your own type with the three required
 ///   methods): at construction the profile is replaced by its piecewise
 ///   cubic Hermite approximation (points and derivatives matched at the
@@ -70,6 +75,8 @@ use std::f64::consts::TAU;
 ///
 /// [`Bezier`]: crate::Bezier
 /// [`BSpline`]: crate::BSpline
+/// [`RationalBezier`]: crate::RationalBezier
+/// [`Nurbs`]: crate::Nurbs
 #[derive(Debug, Clone, PartialEq)]
 pub struct Revolution<C> {
     profile: C,
@@ -90,6 +97,13 @@ pub struct Revolution<C> {
     /// Why the profile breaks the [`Curve`] contract, if it does.
     broken: Option<Error>,
     tolerance: Tolerance,
+    /// The axis of the last successful placement as [`placement`] scales it
+    /// before normalizing (largest component ±1; `y` before any placement):
+    /// the placement's defining data, which serialization writes so that a
+    /// round trip rebuilds `to_world` bit for bit (the axis read back from
+    /// the rotation, or the unit axis normalized again, may differ by an
+    /// ulp; this one scales by exactly 1 again).
+    scaled_axis: Vector3<f64>,
 }
 
 /// How many hits of a profile's approximation are tried, nearest first,
@@ -195,6 +209,7 @@ impl<C: Curve<2>> Revolution<C> {
             approximation,
             broken,
             tolerance: Tolerance::default(),
+            scaled_axis: Vector3::y(),
         }
     }
 
@@ -383,7 +398,7 @@ impl<C: Curve<2>> Revolution<C> {
     /// [`try_with_axis`](Self::try_with_axis) returns the error instead.
     pub fn with_axis(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
         match placement(origin, axis) {
-            Ok(axis) => self.place(origin, axis),
+            Ok(unit) => self.place(origin, unit, axis),
             Err(e) => {
                 self.exact = None;
                 self.broken = Some(e);
@@ -403,12 +418,18 @@ impl<C: Curve<2>> Revolution<C> {
         origin: Point3<f64>,
         axis: Unit<Vector3<f64>>,
     ) -> Result<Self, Error> {
-        let axis = placement(origin, axis)?;
-        Ok(self.place(origin, axis))
+        let unit = placement(origin, axis)?;
+        Ok(self.place(origin, unit, axis))
     }
 
-    /// Places the surface (`origin` and `axis` checked by [`placement`]).
-    fn place(mut self, origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Self {
+    /// Places the surface (`origin` and `given` checked by [`placement`],
+    /// which made the unit `axis` of `given`).
+    fn place(
+        mut self,
+        origin: Point3<f64>,
+        axis: Unit<Vector3<f64>>,
+        given: Unit<Vector3<f64>>,
+    ) -> Self {
         // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
         // of the dot product loses half the digits there).
         let y = Vector3::y();
@@ -426,7 +447,16 @@ impl<C: Curve<2>> Revolution<C> {
             UnitQuaternion::from_rotation_matrix(&rotation),
         );
         self.rotation = self.to_world.rotation.to_rotation_matrix();
+        self.scaled_axis = given.into_inner() / given.amax();
         self
+    }
+
+    /// The axis of the last placement, scaled to largest component ±1 (`y`
+    /// if never placed): placing a surface along it rebuilds the same
+    /// rotation bit for bit.
+    #[cfg(feature = "serde")]
+    pub(crate) fn scaled_axis(&self) -> &Vector3<f64> {
+        &self.scaled_axis
     }
 
     /// The profile curve.

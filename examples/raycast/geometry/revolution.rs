@@ -59,6 +59,7 @@ impl RevolutionShape {
         let (flip, domain, bounds) = match &*body {
             RevolutionBody::Bezier(r) => (needs_flip(r), r.profile().domain(), r.bounds()),
             RevolutionBody::BSpline(r) => (needs_flip(r), r.profile().domain(), r.bounds()),
+            RevolutionBody::Nurbs(r) => (needs_flip(r), r.profile().domain(), r.bounds()),
         };
         if bounds.is_empty() || domain.1 <= domain.0 {
             return None;
@@ -88,6 +89,7 @@ impl RevolutionShape {
         let hit = match &*self.body {
             RevolutionBody::Bezier(r) => r.intersect(ray, t_min, t_max),
             RevolutionBody::BSpline(r) => r.intersect(ray, t_min, t_max),
+            RevolutionBody::Nurbs(r) => r.intersect(ray, t_min, t_max),
         };
         stats.revolution_calls += 1;
         stats.revolution_nanos += start.elapsed().as_nanos() as u64;

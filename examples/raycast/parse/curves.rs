@@ -3,27 +3,38 @@
 //! ```text
 //! BezierCurve  { controls [x y z] [x y z] … }   one Bézier curve of degree count − 1
 //! BsplineCurve { controls [x y z] [x y z] … }   cubic B-spline, uniform knots i/(n+3)
-//! RevSurface   { profile BezierCurve {…} | profile BsplineCurve {…} }
+//! NurbsCurve   { degree p  knots k0 k1 …  controls [x y z w] [x y z] … }
+//!                                              rational B-spline; w the weight (1 if left out)
+//! RevSurface   { profile BezierCurve {…} | profile BsplineCurve {…} | profile NurbsCurve {…} }
 //! ```
 //!
 //! A `RevSurface` profile lies in the `z = 0` plane and turns about the `y`
 //! axis; its points are used as `(x, y)`. A curve directly in a group becomes a
 //! thin tube along its flattening (tolerance `10⁻³` of the control points'
-//! extent, radius `10⁻²` of it but at least `0.001`). revolve's own checks
-//! (too few control points, coordinates too large) are reported at the curve's
-//! keyword with revolve's message.
+//! extent, radius `10⁻²` of it but at least `0.001`).
+//!
+//! A `NurbsCurve`'s control point `[x y z w]` is the point `(x, y, z)` with
+//! weight `w` (not premultiplied); its keys come in any order and all three
+//! are required. `knots` is the whole knot vector, `points + degree + 1`
+//! numbers.
+//!
+//! revolve's own checks (too few control points, coordinates too large, a
+//! wrong knot count, decreasing knots, a weight that is not positive) are
+//! reported with revolve's message, at the item the message names (the
+//! control point's `[`, the weight, the knot, or the `knots` keyword for a
+//! wrong count), else at the curve's keyword.
 
 use std::sync::Arc;
 
 use revolve::nalgebra::{Point2, Point3};
-use revolve::{BSpline, Bezier, Revolution};
+use revolve::{BSpline, Bezier, Error, Flattening, Nurbs, Revolution};
 
 use super::cursor::{Cursor, Result};
-use super::lexer::{Pos, Token};
+use super::lexer::{Kind, Pos, Token};
 use crate::scene::{RevolutionBody, Shape, Tube};
 
-/// The two curve keywords.
-pub(super) const CURVES: &[&str] = &["BezierCurve", "BsplineCurve"];
+/// The curve keywords.
+pub(super) const CURVES: &[&str] = &["BezierCurve", "BsplineCurve", "NurbsCurve"];
 
 /// Tube flattening tolerance, relative to the control points' extent.
 const TUBE_TOLERANCE: f64 = 1e-3;
@@ -32,35 +43,174 @@ const TUBE_RADIUS: f64 = 1e-2;
 /// The smallest tube radius.
 const MIN_TUBE_RADIUS: f64 = 1e-3;
 
-/// The control points of a curve block (after its keyword `name`), each
-/// with the position of its `[`.
-fn controls(c: &mut Cursor<'_>, name: &str) -> Result<Vec<(Point3<f64>, Pos)>> {
-    let open = c.open(name)?;
-    let mut points = None;
-    while let Some(key) = c.key(name, open)? {
-        match key.text {
-            "controls" => c.field(&mut points, key, name, |c, what| {
-                let mut points = Vec::new();
-                loop {
-                    let at = c.here();
-                    if !c.open_bracket() {
-                        break;
-                    }
-                    let p = c.point(what)?;
-                    c.close_bracket(at)?;
-                    points.push((p, at));
-                }
-                Ok(points)
-            })?,
-            _ => return Err(c.unknown(key, name, &["controls"])),
-        }
-    }
-    c.required(points, "controls", name)
+/// One control point as written.
+struct Control {
+    point: Point3<f64>,
+    /// Where its `[` is.
+    at: Pos,
+    /// Its weight and where the weight is (a `NurbsCurve` point written with
+    /// four numbers).
+    weight: Option<(f64, Pos)>,
 }
 
-/// revolve's error for the curve `name` at `at`.
-fn invalid(c: &Cursor<'_>, name: &str, at: Pos, e: revolve::Error) -> super::ParseError {
-    c.error(at, format!("invalid {name}: {e}"))
+impl Control {
+    /// The weight, 1 when left out.
+    fn weight(&self) -> f64 {
+        self.weight.map_or(1.0, |(w, _)| w)
+    }
+}
+
+/// A curve block as written.
+struct CurveBlock {
+    /// The curve's keyword (one of [`CURVES`]) and where it is.
+    name: &'static str,
+    at: Pos,
+    controls: Vec<Control>,
+    /// A `NurbsCurve`'s degree.
+    degree: usize,
+    /// A `NurbsCurve`'s knots, each with its position.
+    knots: Vec<(f64, Pos)>,
+    /// Where the `knots` keyword is.
+    knots_at: Pos,
+}
+
+/// Reads the curve block after its keyword `keyword` (one of [`CURVES`]).
+fn curve_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<CurveBlock> {
+    let name = CURVES
+        .iter()
+        .copied()
+        .find(|&n| n == keyword.text)
+        .unwrap_or("curve");
+    let nurbs = name == "NurbsCurve";
+    let keys: &[&str] = if nurbs {
+        &["degree", "knots", "controls"]
+    } else {
+        &["controls"]
+    };
+    let open = c.open(name)?;
+    let (mut controls, mut degree, mut knots) = (None, None, None);
+    while let Some(key) = c.key(name, open)? {
+        match key.text {
+            "controls" => c.field(&mut controls, key, name, |c, what| {
+                control_points(c, what, nurbs)
+            })?,
+            "degree" if nurbs => c.field(&mut degree, key, name, |c, what| {
+                Ok(c.whole(what, 1)?.0 as usize)
+            })?,
+            "knots" if nurbs => c.field(&mut knots, key, name, |c, what| {
+                Ok((numbers(c, what)?, key.pos))
+            })?,
+            _ => return Err(c.unknown(key, name, keys)),
+        }
+    }
+    let (degree, (knots, knots_at)) = if nurbs {
+        (
+            c.required(degree, "degree", name)?,
+            c.required(knots, "knots", name)?,
+        )
+    } else {
+        (0, (Vec::new(), keyword.pos))
+    };
+    Ok(CurveBlock {
+        name,
+        at: keyword.pos,
+        controls: c.required(controls, "controls", name)?,
+        degree,
+        knots,
+        knots_at,
+    })
+}
+
+/// The control points after `controls`, each `[x y z]`, or `[x y z w]` if
+/// `weighted`.
+fn control_points(c: &mut Cursor<'_>, what: &str, weighted: bool) -> Result<Vec<Control>> {
+    let mut points = Vec::new();
+    loop {
+        let at = c.here();
+        if !c.open_bracket() {
+            break;
+        }
+        let point = c.point(what)?;
+        let closing = c.peek().is_some_and(|t| t.kind == Kind::CloseBracket);
+        let weight = if weighted && !closing {
+            Some(c.number_at("weight")?)
+        } else {
+            None
+        };
+        c.close_bracket(at)?;
+        points.push(Control { point, at, weight });
+    }
+    Ok(points)
+}
+
+/// One or more numbers, each with its position (the value of `what`).
+fn numbers(c: &mut Cursor<'_>, what: &str) -> Result<Vec<(f64, Pos)>> {
+    let mut values = vec![c.number_at(what)?];
+    while c.peek().is_some_and(|t| matches!(t.kind, Kind::Number(_))) {
+        values.push(c.number_at(what)?);
+    }
+    Ok(values)
+}
+
+impl CurveBlock {
+    fn points(&self) -> Vec<Point3<f64>> {
+        self.controls.iter().map(|p| p.point).collect()
+    }
+
+    fn weights(&self) -> Vec<f64> {
+        self.controls.iter().map(Control::weight).collect()
+    }
+
+    fn knots(&self) -> Vec<f64> {
+        self.knots.iter().map(|&(k, _)| k).collect()
+    }
+
+    /// The points as `(x, y)`: a profile lies in the `z = 0` plane.
+    fn plane_points(&self, c: &Cursor<'_>) -> Result<Vec<Point2<f64>>> {
+        self.controls
+            .iter()
+            .map(|p| {
+                if p.point.z != 0.0 {
+                    return Err(c.error(
+                        p.at,
+                        format!(
+                            "a RevSurface profile lies in the z = 0 plane, but this control point has z = {}",
+                            p.point.z
+                        ),
+                    ));
+                }
+                Ok(Point2::new(p.point.x, p.point.y))
+            })
+            .collect()
+    }
+
+    /// Where revolve's error `e` points: the control point, weight or knot
+    /// it names, the `knots` keyword for a wrong count, else the keyword.
+    fn locate(&self, e: &Error) -> Pos {
+        let point = |index: usize| self.controls.get(index).map(|p| p.at);
+        let knot = |index: usize| self.knots.get(index).map(|&(_, at)| at);
+        let at = match *e {
+            Error::NonFinitePoint { index } | Error::CoordinateTooLarge { index, .. } => {
+                point(index)
+            }
+            Error::InvalidWeight { index, .. } => self
+                .controls
+                .get(index)
+                .map(|p| p.weight.map_or(p.at, |(_, at)| at)),
+            Error::NonFiniteKnot { index }
+            | Error::KnotTooLarge { index, .. }
+            | Error::KnotGapTooSmall { index, .. }
+            | Error::DecreasingKnots { index } => knot(index),
+            Error::KnotCount { .. } | Error::KnotMultiplicity { .. } => Some(self.knots_at),
+            _ => None,
+        };
+        at.unwrap_or(self.at)
+    }
+
+    /// revolve's error `e` for this curve, located by [`Self::locate`].
+    fn invalid(&self, c: &Cursor<'_>, e: Error) -> super::ParseError {
+        c.error(self.locate(&e), format!("invalid {}: {e}", self.name))
+    }
 }
 
 /// `RevSurface { profile CURVE }` (after its keyword).
@@ -80,39 +230,34 @@ pub(super) fn rev_surface(c: &mut Cursor<'_>) -> Result<Shape> {
 
 /// The curve after `profile`, in the plane `z = 0`.
 fn profile(c: &mut Cursor<'_>) -> Result<RevolutionBody> {
-    let curve = match c.peek() {
+    let keyword = match c.peek() {
         Some(t) if CURVES.contains(&t.text) => t,
-        _ => return Err(c.expected("BezierCurve or BsplineCurve after 'profile'")),
+        _ => {
+            return Err(c.expected("BezierCurve, BsplineCurve or NurbsCurve after 'profile'"));
+        }
     };
     c.bump();
-    let mut points = Vec::new();
-    for (p, at) in controls(c, curve.text)? {
-        if p.z != 0.0 {
-            return Err(c.error(
-                at,
-                format!(
-                    "a RevSurface profile lies in the z = 0 plane, but this control point has z = {}",
-                    p.z
-                ),
-            ));
+    let block = curve_block(c, keyword)?;
+    let points = block.plane_points(c)?;
+    let fail = |e| block.invalid(c, e);
+    Ok(match keyword.text {
+        "BezierCurve" => {
+            RevolutionBody::Bezier(Revolution::new(Bezier::new(points).map_err(fail)?))
         }
-        points.push(Point2::new(p.x, p.y));
-    }
-    let fail = |e| invalid(c, curve.text, curve.pos, e);
-    Ok(if curve.text == "BezierCurve" {
-        RevolutionBody::Bezier(Revolution::new(Bezier::new(points).map_err(fail)?))
-    } else {
-        RevolutionBody::BSpline(Revolution::new(BSpline::uniform(3, points).map_err(fail)?))
+        "BsplineCurve" => {
+            RevolutionBody::BSpline(Revolution::new(BSpline::uniform(3, points).map_err(fail)?))
+        }
+        _ => RevolutionBody::Nurbs(Revolution::new(
+            Nurbs::new(block.degree, block.knots(), points, block.weights()).map_err(fail)?,
+        )),
     })
 }
 
 /// A curve directly in a group (after its keyword `curve`): a thin tube.
 pub(super) fn tube(c: &mut Cursor<'_>, curve: Token<'_>) -> Result<Shape> {
-    let points: Vec<Point3<f64>> = controls(c, curve.text)?
-        .into_iter()
-        .map(|(p, _)| p)
-        .collect();
-    let fail = |e| invalid(c, curve.text, curve.pos, e);
+    let block = curve_block(c, curve)?;
+    let points = block.points();
+    let fail = |e| block.invalid(c, e);
     let extent = match points.split_first() {
         Some((first, rest)) => {
             let (lo, hi) = rest
@@ -125,15 +270,26 @@ pub(super) fn tube(c: &mut Cursor<'_>, curve: Token<'_>) -> Result<Shape> {
         None => 0.0,
     };
     let tolerance = TUBE_TOLERANCE * extent;
-    let flattening = if curve.text == "BezierCurve" {
-        let bezier = Bezier::new(points).map_err(fail)?;
-        check_extent(c, curve, extent)?;
-        bezier.flatten(tolerance).map_err(fail)?
-    } else {
-        let spline = BSpline::uniform(3, points).map_err(fail)?;
-        check_extent(c, curve, extent)?;
-        spline.flatten(tolerance).map_err(fail)?
+    // revolve's checks first, then whether there is anything to draw.
+    let flattening: std::result::Result<Flattening<3>, Error> = match curve.text {
+        "BezierCurve" => {
+            let bezier = Bezier::new(points).map_err(fail)?;
+            check_extent(c, curve, extent)?;
+            bezier.flatten(tolerance)
+        }
+        "BsplineCurve" => {
+            let spline = BSpline::uniform(3, points).map_err(fail)?;
+            check_extent(c, curve, extent)?;
+            spline.flatten(tolerance)
+        }
+        _ => {
+            let nurbs =
+                Nurbs::new(block.degree, block.knots(), points, block.weights()).map_err(fail)?;
+            check_extent(c, curve, extent)?;
+            nurbs.flatten(tolerance)
+        }
     };
+    let flattening = flattening.map_err(fail)?;
     Ok(Shape::Tube(Arc::new(Tube {
         points: flattening.samples.iter().map(|s| s.point).collect(),
         radius: (TUBE_RADIUS * extent).max(MIN_TUBE_RADIUS),

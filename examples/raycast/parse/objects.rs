@@ -4,6 +4,7 @@
 //! Group     { numObjects N  ( MaterialIndex I | object )… }
 //! Transform { step… object }                      exactly one object
 //! object    = Group | Transform | primitive | RevSurface | BezierCurve | BsplineCurve
+//!           | NurbsCurve
 //! ```
 //!
 //! `numObjects`, when given, counts the objects (a nested group is one) and
@@ -39,6 +40,7 @@ pub(super) const OBJECTS: &[&str] = &[
     "RevSurface",
     "BezierCurve",
     "BsplineCurve",
+    "NurbsCurve",
 ];
 
 /// The deepest nesting of `Group`s and `Transform`s accepted (the top-level

@@ -19,6 +19,8 @@ mod format_example;
 mod lexing;
 #[path = "tests/limits.rs"]
 mod limits;
+#[path = "tests/nurbs.rs"]
+mod nurbs;
 #[path = "tests/objects.rs"]
 mod objects;
 #[path = "tests/robustness.rs"]

@@ -222,7 +222,7 @@ fn profile_that_is_no_curve() {
         &in_group("RevSurface { profile Sphere { } }"),
         3,
         22,
-        "expected BezierCurve or BsplineCurve after 'profile', found 'Sphere'",
+        "expected BezierCurve, BsplineCurve or NurbsCurve after 'profile', found 'Sphere'",
     );
 }
 

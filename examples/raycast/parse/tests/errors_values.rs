@@ -262,7 +262,8 @@ fn revolve_rejects_huge_coordinates() {
     let e = fail(&in_group(
         "  BezierCurve { controls [ 1e200 0 0 ] [ 0 0 0 ] }",
     ));
-    assert_eq!((e.line, e.column), (3, 3), "{e}");
+    // At the control point revolve names.
+    assert_eq!((e.line, e.column), (3, 26), "{e}");
     let revolve = Bezier::new(vec![Point3::new(1e200, 0.0, 0.0), Point3::origin()])
         .expect_err("revolve rejects 1e200");
     assert_eq!(e.message, format!("invalid BezierCurve: {revolve}"));

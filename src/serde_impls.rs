@@ -1,0 +1,300 @@
+//! `Serialize` and `Deserialize` (feature `serde`) for the curves, the
+//! surface of revolution, rays, tolerances and boxes.
+//!
+//! Each type is written as its defining data, a struct of named fields:
+//!
+//! | type | fields |
+//! | --- | --- |
+//! | [`Bezier<D>`] | `points` |
+//! | [`BSpline<D>`] | `degree`, `knots`, `points` |
+//! | [`RationalBezier<D>`] | `points`, `weights` |
+//! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
+//! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
+//! | [`Tolerance`] | `relative`, `max_iterations` |
+//! | [`Ray`] | `origin`, `dir` |
+//! | [`Aabb`] | `min`, `max` |
+//!
+//! Points and vectors are sequences of their coordinates (nalgebra's own
+//! serde form). Reading goes through the public constructor
+//! ([`Bezier::new`], [`BSpline::new`], [`RationalBezier::new`],
+//! [`Nurbs::new`], [`Tolerance::new`], [`Revolution::try_new`] then
+//! [`Revolution::try_with_axis`]), so a deserialized value is exactly as
+//! valid as a constructed one, and bad data (a NaN coordinate, a wrong knot
+//! count, a weight that is not positive, a tolerance out of range, a zero
+//! axis) is a deserialization error whose message is the crate's
+//! [`Error`](crate::Error) message. Unknown fields are errors too.
+//!
+//! Caches are not written: a revolution's intersector tables are rebuilt
+//! from the profile when it is read. A revolution whose profile or placement
+//! is broken (see [`Revolution::contract_error`]) cannot be serialized (it
+//! could not be read back); neither can a [`Tolerance`] made unchecked with
+//! values [`Tolerance::new`] refuses be read back. [`Ray`] and [`Aabb`] have
+//! public fields and no checks, so any values round-trip (as far as the
+//! format can carry them: JSON has no NaN or infinity).
+//!
+//! ```
+//! use revolve::nalgebra::Point2;
+//! use revolve::{Error, Nurbs, Revolution};
+//! use std::f64::consts::FRAC_PI_2;
+//!
+//! // A sphere: the half circle from the south pole to the north pole, turned.
+//! let arc = Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2)?;
+//! let sphere = Revolution::new(arc);
+//! let json = serde_json::to_string(&sphere).unwrap();
+//! let back: Revolution<Nurbs<2>> = serde_json::from_str(&json).unwrap();
+//! assert_eq!(back, sphere);
+//!
+//! // Bad data is refused with the constructor's message.
+//! let bad = r#"{"degree": 1, "knots": [0, 0, 1, 1], "points": [[0, 0], [1, 1]], "weights": [1, -2]}"#;
+//! let e = serde_json::from_str::<Nurbs<2>>(bad).unwrap_err();
+//! let expected = Error::InvalidWeight { index: 1, weight: -2.0 };
+//! assert!(e.to_string().starts_with(&expected.to_string()));
+//! # Ok::<(), Error>(())
+//! ```
+
+use std::borrow::Cow;
+
+use nalgebra::{Point, Point3, Unit, Vector3};
+use serde::ser::Error as _;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::{Aabb, BSpline, Bezier, Curve, Nurbs, RationalBezier, Ray, Revolution, Tolerance};
+
+/// A crate error as the deserializer's error, with the crate's message.
+fn invalid<E: serde::de::Error>(e: crate::Error) -> E {
+    E::custom(e)
+}
+
+/// The defining data of a [`Bezier`]: borrowed when written, owned when read.
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Bezier", deny_unknown_fields)]
+struct BezierData<'a, const D: usize> {
+    points: Cow<'a, [Point<f64, D>]>,
+}
+
+impl<const D: usize> Serialize for Bezier<D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        BezierData {
+            points: Cow::Borrowed(self.points()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for Bezier<D> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = BezierData::<D>::deserialize(deserializer)?;
+        Bezier::new(data.points.into_owned()).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`BSpline`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "BSpline", deny_unknown_fields)]
+struct BSplineData<'a, const D: usize> {
+    degree: usize,
+    knots: Cow<'a, [f64]>,
+    points: Cow<'a, [Point<f64, D>]>,
+}
+
+impl<const D: usize> Serialize for BSpline<D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        BSplineData {
+            degree: self.degree(),
+            knots: Cow::Borrowed(self.knots()),
+            points: Cow::Borrowed(self.points()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for BSpline<D> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = BSplineData::<D>::deserialize(deserializer)?;
+        BSpline::new(
+            data.degree,
+            data.knots.into_owned(),
+            data.points.into_owned(),
+        )
+        .map_err(invalid)
+    }
+}
+
+/// The defining data of a [`RationalBezier`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "RationalBezier", deny_unknown_fields)]
+struct RationalBezierData<'a, const D: usize> {
+    points: Cow<'a, [Point<f64, D>]>,
+    weights: Cow<'a, [f64]>,
+}
+
+impl<const D: usize> Serialize for RationalBezier<D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        RationalBezierData {
+            points: Cow::Borrowed(self.points()),
+            weights: Cow::Borrowed(self.weights()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for RationalBezier<D> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = RationalBezierData::<D>::deserialize(deserializer)?;
+        RationalBezier::new(data.points.into_owned(), data.weights.into_owned()).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`Nurbs`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Nurbs", deny_unknown_fields)]
+struct NurbsData<'a, const D: usize> {
+    degree: usize,
+    knots: Cow<'a, [f64]>,
+    points: Cow<'a, [Point<f64, D>]>,
+    weights: Cow<'a, [f64]>,
+}
+
+impl<const D: usize> Serialize for Nurbs<D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        NurbsData {
+            degree: self.degree(),
+            knots: Cow::Borrowed(self.knots()),
+            points: Cow::Borrowed(self.points()),
+            weights: Cow::Borrowed(self.weights()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for Nurbs<D> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = NurbsData::<D>::deserialize(deserializer)?;
+        Nurbs::new(
+            data.degree,
+            data.knots.into_owned(),
+            data.points.into_owned(),
+            data.weights.into_owned(),
+        )
+        .map_err(invalid)
+    }
+}
+
+/// The defining data of a [`Tolerance`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Tolerance", deny_unknown_fields)]
+struct ToleranceData {
+    relative: f64,
+    max_iterations: u32,
+}
+
+impl Serialize for Tolerance {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        ToleranceData {
+            relative: self.relative,
+            max_iterations: self.max_iterations,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for Tolerance {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = ToleranceData::deserialize(deserializer)?;
+        Tolerance::new(data.relative, data.max_iterations).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`Revolution`]: the profile (by reference when
+/// written), the placement and the accuracy.
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Revolution", deny_unknown_fields)]
+struct RevolutionData<P> {
+    profile: P,
+    origin: Point3<f64>,
+    axis: Vector3<f64>,
+    tolerance: Tolerance,
+}
+
+impl<C: Curve<2> + Serialize> Serialize for Revolution<C> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        if let Some(e) = self.contract_error() {
+            return Err(S::Error::custom(format_args!(
+                "a broken revolution cannot be written: {e}"
+            )));
+        }
+        RevolutionData {
+            profile: self.profile(),
+            origin: Point3::from(self.to_world().translation.vector),
+            axis: *self.scaled_axis(),
+            tolerance: *self.tolerance(),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, C: Curve<2> + Deserialize<'de>> Deserialize<'de> for Revolution<C> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = RevolutionData::<C>::deserialize(deserializer)?;
+        // `try_with_axis` checks the axis itself (finite, not zero) and
+        // brings it to unit length.
+        Revolution::try_new(data.profile)
+            .and_then(|r| r.try_with_axis(data.origin, Unit::new_unchecked(data.axis)))
+            .map(|r| r.with_tolerance(data.tolerance))
+            .map_err(invalid)
+    }
+}
+
+/// The fields of a [`Ray`].
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Ray", deny_unknown_fields)]
+struct RayData {
+    origin: Point3<f64>,
+    dir: Vector3<f64>,
+}
+
+impl Serialize for Ray {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        RayData {
+            origin: self.origin,
+            dir: self.dir,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for Ray {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = RayData::deserialize(deserializer)?;
+        Ok(Ray::new(data.origin, data.dir))
+    }
+}
+
+/// The fields of an [`Aabb`] (read as given: any corners make a box, an
+/// inverted one is empty).
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "Aabb", deny_unknown_fields)]
+struct AabbData {
+    min: Point3<f64>,
+    max: Point3<f64>,
+}
+
+impl Serialize for Aabb {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        AabbData {
+            min: self.min,
+            max: self.max,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for Aabb {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = AabbData::deserialize(deserializer)?;
+        Ok(Aabb {
+            min: data.min,
+            max: data.max,
+        })
+    }
+}
