@@ -11,6 +11,10 @@
 //!   Cox–de Boor basis values and derivatives, derivative splines, knot
 //!   insertion, conversion to Bézier spans), including the course framework's
 //!   uniform knots and clamped knots;
+//! - [`Nurbs`] rational B-splines (evaluation in homogeneous coordinates,
+//!   derivatives of any order by the quotient rule, knot insertion,
+//!   rational Bézier spans), with exact circles and arcs
+//!   ([`Nurbs::circle`], [`Nurbs::arc`]);
 //! - the [`Curve`] trait they share, usable for your own curve types, with
 //!   uniform sampling ([`Curve::discretize`]) and adaptive flattening to a
 //!   guaranteed tolerance ([`Bezier::flatten`], [`BSpline::flatten`]);

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::Rng;
+use common::{CountingAllocator, Rng, allocations_in};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -18,6 +18,9 @@ use revolve::{BSpline, Curve, Error, Nurbs};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI, TAU};
 
 type Q = BigRational;
+
+#[global_allocator]
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// The exact value of a finite `f64`.
 fn q(x: f64) -> Q {
@@ -168,12 +171,13 @@ fn exact_derivatives(c: &Random, t: f64, orders: usize) -> Vec<(Vector2<f64>, f6
     let mut w = vec![Q::zero(); orders];
     let mut a_abs = vec![Q::zero(); orders];
     let mut w_abs = vec![Q::zero(); orders];
-    for i in span - p..=span {
-        let wi = q(c.weights[i]);
-        let (x, y) = (q(c.points[i].x), q(c.points[i].y));
+    let controls = c.points.iter().zip(&c.weights).enumerate();
+    for (i, (point, &weight)) in controls.take(span + 1).skip(span - p) {
+        let wi = q(weight);
+        let (x, y) = (q(point.x), q(point.y));
         let size = &wi * (x.abs() + y.abs());
-        for k in 0..orders {
-            let nk = &table[k][p][i];
+        for (k, row) in table.iter().enumerate() {
+            let nk = &row[p][i];
             a[k][0] += &wi * &x * nk;
             a[k][1] += &wi * &y * nk;
             w[k] += &wi * nk;
@@ -990,7 +994,7 @@ fn bad_weights_are_named_errors() {
 #[test]
 fn bad_knots_give_the_bspline_errors() {
     let (knots, points) = unit_parts();
-    let weights = vec![1.0, 2.0, 1.0, 0.5];
+    let weights = [1.0, 2.0, 1.0, 0.5];
     let cases: Vec<(usize, Vec<f64>, Vec<Point2<f64>>)> = vec![
         (2, knots.clone(), vec![]),
         (4, knots.clone(), points.clone()),
@@ -1083,6 +1087,39 @@ fn bad_circles_and_arcs_are_named_errors() {
         Nurbs::circle(o, -1.0).unwrap_err().to_string(),
         "radius -1 is not a finite positive number at most 1e100"
     );
+}
+
+#[test]
+fn new_error_messages_name_the_numbers_and_are_distinct() {
+    let errors = [
+        Error::InvalidRadius { radius: -2.5 },
+        Error::InvalidCenter {
+            center: Point2::new(f64::NAN, 3.25),
+        },
+        Error::InvalidSweep {
+            start: 1.5,
+            end: 9.75,
+        },
+        Error::DerivativeOrderTooHigh {
+            order: 2000,
+            max: MAX_DERIVATIVE_ORDER,
+        },
+    ];
+    let parts: [&[&str]; 4] = [
+        &["radius", "-2.5"],
+        &["center", "NaN", "3.25"],
+        &["arc", "1.5", "9.75", "sweep"],
+        &["2000", "1024"],
+    ];
+    let messages: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
+    for (message, parts) in messages.iter().zip(parts) {
+        for part in parts {
+            assert!(message.contains(part), "{message:?} lacks {part:?}");
+        }
+    }
+    for (i, a) in messages.iter().enumerate() {
+        assert!(messages[i + 1..].iter().all(|b| a != b));
+    }
 }
 
 #[test]
@@ -1296,5 +1333,32 @@ proptest! {
         // The Curve methods agree with the derivatives.
         prop_assert!((c.derivative(t) - at[1]).amax() <= 1e-13 * at[1].amax().max(1.0));
         prop_assert!((c.eval(t).coords - at[0]).amax() <= 1e-14 * 10.0);
+    }
+}
+
+// ------------------------------------------------------------ hot paths ----
+
+#[test]
+fn evaluation_does_not_allocate_up_to_degree_16() {
+    let mut rng = Rng(43);
+    for degree in [1, 2, 3, 7, 16] {
+        let parts = random_parts(&mut rng, degree, 0.1, 10.0);
+        let c = parts.nurbs();
+        let circle = Nurbs::circle(Point2::new(1.0, 2.0), 3.0).unwrap();
+        let ts = parameters(&mut rng, &c, 10);
+        let count = allocations_in(|| {
+            let mut out = [Vector2::zeros(); 4];
+            let mut sum = Vector2::zeros();
+            for &t in &ts {
+                sum += c.eval(t).coords + c.derivative(t) + circle.eval(t).coords;
+                let (p, d) = c.eval_with_derivative(t);
+                sum += p.coords + d;
+                c.derivatives(t, &mut out).unwrap();
+                sum += out[3] + c.nth_derivative(t, 2).unwrap();
+                sum += c.tangent(t).map_or(Vector2::zeros(), |u| u.into_inner());
+            }
+            sum
+        });
+        assert_eq!(count, 0, "degree {degree}");
     }
 }

@@ -60,7 +60,7 @@ pub(crate) const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
 /// every point of the curve with parameter in `[sᵢ.t, sᵢ₊₁.t]` lies within
 /// `bound` of the segment `[sᵢ.point, sᵢ₊₁.point]`; `bound ≤ tolerance`.
 ///
-/// Where a B-spline jumps (an interior knot of full multiplicity), the sample
+/// Where a B-spline or NURBS jumps (an interior knot of full multiplicity), the sample
 /// list holds two samples with the same `t`: the limit from the left, then the
 /// value (right limit). The segment between them is the jump itself.
 #[derive(Debug, Clone, PartialEq)]

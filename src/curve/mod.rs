@@ -146,7 +146,7 @@ pub trait Curve<const D: usize> {
     /// [polynomial spans](Curve::bezier_spans) with unit weights.
     ///
     /// A [`Revolution`](crate::Revolution) whose profile has rational spans
-    /// (a [`Nurbs`](crate::Nurbs) profile: exact spheres, tori, lathed
+    /// (a [`Nurbs`] profile: exact spheres, tori, lathed
     /// parts) gets the exact ray intersector.
     fn rational_bezier_spans(&self) -> Option<Vec<RationalBezierSpan<D>>> {
         self.bezier_spans()

@@ -339,6 +339,20 @@ impl<const D: usize> Nurbs<D> {
     ///
     /// # Errors
     /// As [`derivatives`](Self::derivatives).
+    ///
+    /// ```
+    /// use revolve::Nurbs;
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// // A rational line segment: straight, but not at constant speed, so its
+    /// // derivatives above the degree do not vanish.
+    /// let knots = vec![0.0, 0.0, 1.0, 1.0];
+    /// let line = Nurbs::new(1, knots, vec![Point2::new(0.0, 0.0), Point2::new(2.0, 0.0)], vec![1.0, 3.0])?;
+    /// // C(t) = 6t/(1 + 2t)·(1, 0), so C″(t) = −24/(1 + 2t)³·(1, 0).
+    /// let second = line.nth_derivative(0.5, 2)?;
+    /// assert!((second.x + 3.0).abs() < 1e-14 && second.y == 0.0);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
     pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
         if order > MAX_DERIVATIVE_ORDER {
             return Err(Error::DerivativeOrderTooHigh {
@@ -369,6 +383,20 @@ impl<const D: usize> Nurbs<D> {
     /// then occur more than `degree + 1` times; [`Error::DerivativeOverflow`]
     /// if the new pieces' rounding broke the bound of [`new`](Self::new)
     /// (only for curves at that bound).
+    ///
+    /// ```
+    /// use revolve::{Curve, Nurbs};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let circle = Nurbs::circle(Point2::origin(), 1.0)?;
+    /// let refined = circle.insert_knot(0.1, 2)?;
+    /// assert_eq!(refined.points().len(), 11);
+    /// for k in 0..=20 {
+    ///     let t = k as f64 / 20.0;
+    ///     assert!((refined.eval(t) - circle.eval(t)).norm() < 1e-15);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<Nurbs<D>, Error> {
         let t = knot_to_insert(&self.knots, self.degree, self.domain(), t, times)?;
         let mut curve = self.clone();
@@ -418,7 +446,22 @@ impl<const D: usize> Nurbs<D> {
     /// `Σ (wᵢPᵢ, wᵢ)Nᵢ,ₚ` (`p − r` times `a`, `r` times `b`; Ramshaw's
     /// blossoming principle), computed at construction; a piece's points are
     /// their projections (kept in the box of the span's control points), its
-    /// weights their last coordinates, scaled so that the largest is 1.
+    /// weights their last coordinates, scaled by a power of two so that the
+    /// largest is in `[1, 2)`.
+    ///
+    /// ```
+    /// use revolve::{Curve, Nurbs};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let circle = Nurbs::circle(Point2::origin(), 1.0)?;
+    /// let spans = circle.to_bezier_spans();
+    /// assert_eq!(spans.len(), 4);
+    /// // The second quarter: from (0, 1) over the corner (−1, 1) to (−1, 0).
+    /// assert_eq!(spans[1].knots, (0.25, 0.5));
+    /// assert_eq!(spans[1].curve.points(), &[Point2::new(0.0, 1.0), Point2::new(-1.0, 1.0), Point2::new(-1.0, 0.0)]);
+    /// assert!((spans[1].curve.eval(0.5) - circle.eval(0.375)).norm() < 1e-15);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
     pub fn to_bezier_spans(&self) -> Vec<RationalBezierSpan<D>> {
         (0..self.pieces.len())
             .map(|j| {
@@ -455,6 +498,21 @@ impl<const D: usize> Nurbs<D> {
     /// positive; [`Error::ToleranceTooSmall`] below `1e-10 ×` the largest
     /// control-point coordinate of the pieces, or when rounding keeps a piece
     /// from being certified.
+    ///
+    /// ```
+    /// use revolve::Nurbs;
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let circle = Nurbs::circle(Point2::origin(), 1.0)?;
+    /// let flat = circle.flatten(1e-3)?;
+    /// assert!(flat.bound <= 1e-3);
+    /// // Every chord midpoint is within the bound of the circle.
+    /// for pair in flat.samples.windows(2) {
+    ///     let mid = pair[0].point + (pair[1].point - pair[0].point) * 0.5;
+    ///     assert!(1.0 - mid.coords.norm() <= flat.bound);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
     pub fn flatten(&self, tolerance: f64) -> Result<Flattening<D>, Error> {
         let pieces =
             (0..self.pieces.len()).map(|j| (self.pieces.coeffs(j), self.pieces.interval(j)));
@@ -520,9 +578,10 @@ impl Nurbs<2> {
     /// `[0, 1]`.
     ///
     /// The sweep `end − start` must lie in `(0, 2π]`; a sweep of `2π` is the
-    /// full circle starting (and ending) at `start`, and a sweep beyond `2π`
-    /// by no more than the rounding of the angles (`2ε·max(|start|, |end|)`)
-    /// counts as `2π`. The arc is split into `m = ⌈sweep/(π/2)⌉` equal pieces,
+    /// full circle starting (and ending, exactly) at `start`, and a sweep
+    /// within the rounding of the angles (`2ε·max(|start|, |end|)`) of `2π`,
+    /// below or above, counts as `2π` (so `arc(c, r, a, a + TAU)` is a full
+    /// turn for any `a`). The arc is split into `m = ⌈sweep/(π/2)⌉` equal pieces,
     /// each a rational quadratic Bézier (Piegl & Tiller §7.5) with end points
     /// `center + radius·uᵢ` on the circle (`uᵢ = (cos θᵢ, sin θᵢ)`), middle
     /// point on the bisector at distance `radius/cos(φ/2)` from the center and
@@ -559,8 +618,8 @@ impl Nurbs<2> {
         if !(start.is_finite() && end.is_finite() && sweep > 0.0 && sweep <= TAU + slack) {
             return Err(Error::InvalidSweep { start, end });
         }
-        let full = sweep >= TAU;
-        let sweep = sweep.min(TAU);
+        let full = sweep >= TAU - slack;
+        let sweep = if full { TAU } else { sweep };
         let m = ((sweep / FRAC_PI_2).ceil() as usize).clamp(1, 4);
         let step = sweep / m as f64;
         let direction = |angle: f64| Vector2::new(angle.cos(), angle.sin());
@@ -725,7 +784,7 @@ impl<const D: usize> Div<f64> for Homogeneous<D> {
 
 /// The power of two by which the weights are divided: the largest weight
 /// becomes a number in `[1, 2)`, the others are scaled exactly.
-fn weight_scale(weights: &[f64]) -> f64 {
+pub(crate) fn weight_scale(weights: &[f64]) -> f64 {
     power_of_two_near(weights.iter().fold(0.0_f64, |m, &w| m.max(w)))
 }
 

@@ -1,11 +1,13 @@
 //! Rational Bézier curves: one piece of a NURBS curve, and exact conics.
 
 use super::homogeneous::{Homogeneous, project, project_with_derivative, quotient_rule};
+use super::nurbs::weight_scale;
 use super::{
     NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain, point_bounds,
     tangent_from_derivatives, validate_points,
 };
 use crate::bernstein::{self, de_casteljau, differentiate_in_place};
+use crate::curve::MAX_DERIVATIVE_ORDER;
 use crate::scratch::with_scratch;
 use crate::{Bezier, BezierSpan, Curve, Error};
 use nalgebra::{Point, SVector, Unit};
@@ -48,7 +50,8 @@ pub const MAX_WEIGHT_RATIO: f64 = 1e8;
 pub struct RationalBezier<const D: usize> {
     points: Vec<Point<f64, D>>,
     weights: Vec<f64>,
-    /// `(wᵢPᵢ, wᵢ)`, with the weights scaled so that the largest is 1.
+    /// `(wᵢPᵢ, wᵢ)`, with the weights divided by a power of two near the
+    /// largest.
     homogeneous: Vec<Homogeneous<D>>,
     /// The control points' bounding box, which contains the curve.
     bounds: (Point<f64, D>, Point<f64, D>),
@@ -139,11 +142,13 @@ impl<const D: usize> RationalBezier<D> {
     /// Wraps points and weights the crate computed from valid input.
     pub(crate) fn from_valid_parts(points: Vec<Point<f64, D>>, weights: Vec<f64>) -> Self {
         debug_assert_eq!(points.len(), weights.len());
-        let top = weights.iter().fold(0.0_f64, |m, &w| m.max(w));
+        // Divided by a power of two (exact), so that end points come out
+        // exactly.
+        let scale = weight_scale(&weights);
         let homogeneous = points
             .iter()
             .zip(&weights)
-            .map(|(p, &w)| Homogeneous::new(p, w / top))
+            .map(|(p, &w)| Homogeneous::new(p, w / scale))
             .collect();
         let bounds = point_bounds(&points);
         RationalBezier {
@@ -188,11 +193,14 @@ impl<const D: usize> RationalBezier<D> {
     /// range give an error.
     ///
     /// # Errors
+    /// [`Error::DerivativeOrderTooHigh`] beyond
+    /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER);
     /// [`Error::DerivativeOverflow`] with the first order that is not finite.
     pub fn derivatives(&self, t: f64, out: &mut [SVector<f64, D>]) -> Result<(), Error> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.homogeneous.len();
         let orders = out.len();
+        check_order(orders.saturating_sub(1))?;
         with_scratch(orders + n, Homogeneous::zero(), |s| {
             let (h, work) = s.split_at_mut(orders);
             for (k, hk) in h.iter_mut().enumerate() {
@@ -224,11 +232,23 @@ impl<const D: usize> RationalBezier<D> {
     /// # Errors
     /// As [`derivatives`](Self::derivatives).
     pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
+        check_order(order)?;
         with_scratch(order + 1, SVector::zeros(), |out| {
             self.derivatives(t, out)?;
             Ok(out[order])
         })
     }
+}
+
+/// Refuses derivative orders beyond [`MAX_DERIVATIVE_ORDER`].
+fn check_order(order: usize) -> Result<(), Error> {
+    if order > MAX_DERIVATIVE_ORDER {
+        return Err(Error::DerivativeOrderTooHigh {
+            order,
+            max: MAX_DERIVATIVE_ORDER,
+        });
+    }
+    Ok(())
 }
 
 impl<const D: usize> Curve<D> for RationalBezier<D> {
