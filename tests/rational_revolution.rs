@@ -28,7 +28,7 @@
 
 mod common;
 
-use common::closed_forms::{sphere_roots, torus_roots};
+use common::closed_forms::ClosedForm;
 use common::conic_profiles::{sphere_profile, torus_profile};
 use common::exact_roots::{RealRoots, common_integers};
 use common::{Rng, check_hit, kappa};
@@ -52,15 +52,6 @@ const RADIUS: f64 = 1.25;
 const MAJOR: f64 = 1.0;
 const MINOR: f64 = 0.375;
 
-#[derive(Debug, Clone, Copy)]
-enum Kind {
-    /// About the origin.
-    Sphere { radius: f64 },
-    /// About the y axis through the origin, the tube's centre circle in the
-    /// plane y = 0.
-    Torus { major: f64, minor: f64 },
-}
-
 /// The revolution of `profile`, which must get the exact intersector.
 fn exact_revolution(profile: Profile) -> Revolution<Profile> {
     let surface = Revolution::new(profile);
@@ -70,52 +61,40 @@ fn exact_revolution(profile: Profile) -> Revolution<Profile> {
 
 /// A surface under test and its closed form.
 struct Shape {
-    kind: Kind,
+    kind: ClosedForm,
     surface: Revolution<Profile>,
 }
 
 impl Shape {
     fn sphere(radius: f64) -> Self {
         Shape {
-            kind: Kind::Sphere { radius },
+            kind: ClosedForm::Sphere { radius },
             surface: exact_revolution(sphere_profile(radius)),
         }
     }
 
     fn torus(major: f64, minor: f64) -> Self {
         Shape {
-            kind: Kind::Torus { major, minor },
+            kind: ClosedForm::Torus { major, minor },
             surface: exact_revolution(torus_profile(major, minor)),
         }
     }
 
     /// The object's size: its largest absolute coordinate.
     fn scale(&self) -> f64 {
-        match self.kind {
-            Kind::Sphere { radius } => radius,
-            Kind::Torus { major, minor } => major + minor,
-        }
+        self.kind.scale()
     }
 
     /// The reference's roots along `ray`.
     fn roots(&self, ray: &Ray) -> RealRoots {
-        match self.kind {
-            Kind::Sphere { radius } => sphere_roots(ray, radius),
-            Kind::Torus { major, minor } => torus_roots(ray, major, minor),
-        }
-        .expect("a finite ray with a non-zero direction")
+        self.kind
+            .roots(ray)
+            .expect("a finite ray with a non-zero direction")
     }
 
     /// The closed form's outward unit normal at (or nearest to) `p`.
     fn outward(&self, p: &Point3<f64>) -> Vector3<f64> {
-        match self.kind {
-            Kind::Sphere { .. } => p.coords.normalize(),
-            Kind::Torus { major, .. } => {
-                let rho = p.x.hypot(p.z);
-                let centre = Vector3::new(p.x / rho, 0.0, p.z / rho) * major;
-                (p.coords - centre).normalize()
-            }
-        }
+        self.kind.outward(p)
     }
 }
 
@@ -282,7 +261,7 @@ fn reference_roots_are_exact() {
         let (o, d) = (r.origin.coords, r.dir);
         let (qa, qb, qc) = (d.dot(&d), o.dot(&d), o.dot(&o) - RADIUS * RADIUS);
         let disc = qb * qb - qa * qc;
-        let roots = sphere_roots(&r, RADIUS).unwrap().all_in(-INF, INF);
+        let roots = sphere().roots(&r).all_in(-INF, INF);
         if disc < 1e-3 * qb * qb {
             continue; // near tangent: the formula loses digits
         }
@@ -301,38 +280,26 @@ fn reference_roots_are_exact() {
     // R ± r on both sides, exactly.
     let through = ray([-3.0, 0.0, 0.0], [1.0, 0.0, 0.0]);
     let (big, small) = (MAJOR, MINOR);
+    let t = torus();
     let want = [
         3.0 - big - small,
         3.0 - big + small,
         3.0 + big - small,
         3.0 + big + small,
     ];
-    assert_eq!(
-        torus_roots(&through, big, small).unwrap().all_in(0.0, INF),
-        want
-    );
+    assert_eq!(t.roots(&through).all_in(0.0, INF), want);
     // Parallel to the axis at ρ = R + r/2: y = ±r·√3/2.
     let rho = big + 0.5 * small;
     let up = ray([rho, -2.0, 0.0], [0.0, 1.0, 0.0]);
-    let roots = torus_roots(&up, big, small).unwrap().all_in(0.0, INF);
+    let roots = t.roots(&up).all_in(0.0, INF);
     let y = small * 3f64.sqrt() / 2.0;
     assert_eq!(roots.len(), 2);
     assert!((roots[0] - (2.0 - y)).abs() < 1e-15 && (roots[1] - (2.0 + y)).abs() < 1e-15);
     // Through the hole along the axis, and beyond the tube: none.
     let axis = ray([0.0, -2.0, 0.0], [0.0, 1.0, 0.0]);
-    assert!(
-        torus_roots(&axis, big, small)
-            .unwrap()
-            .all_in(-INF, INF)
-            .is_empty()
-    );
+    assert!(t.roots(&axis).all_in(-INF, INF).is_empty());
     let beyond = ray([-3.0, 0.0, big + small + 1e-9], [1.0, 0.0, 0.0]);
-    assert!(
-        torus_roots(&beyond, big, small)
-            .unwrap()
-            .all_in(-INF, INF)
-            .is_empty()
-    );
+    assert!(t.roots(&beyond).all_in(-INF, INF).is_empty());
 }
 
 // ---------------------------------------------------------------------------
@@ -763,7 +730,7 @@ fn secondary_rays_find_the_next_surface() {
                     (g, w) => panic!("{g:?} but the reference has {w:?} for {next:?}"),
                 }
             }
-            if let Kind::Sphere { .. } = shape.kind {
+            if let ClosedForm::Sphere { .. } = shape.kind {
                 // Out of the ball: nothing; into it: the far side.
                 let out = Ray::new(first.point, -inward + rng.direction() * 0.5);
                 assert_eq!(shape.surface.intersect(&out, 0.0, INF), None);
@@ -795,8 +762,8 @@ fn scales_1e_minus_6_and_1e6() {
             // Hits along the axis (the sphere's poles, the torus's hole),
             // parallel to it through the solid, perpendicular through it.
             let (along, parallel_at, across) = match shape.kind {
-                Kind::Sphere { radius } => (2, 0.5 * radius, 2),
-                Kind::Torus { major, .. } => (0, major, 4),
+                ClosedForm::Sphere { radius } => (2, 0.5 * radius, 2),
+                ClosedForm::Torus { major, .. } => (0, major, 4),
             };
             expect_hits(
                 &shape,

@@ -10,27 +10,14 @@
 //! against these references have that floor. Every ray with a finite
 //! origin and a non-zero direction is certified (tangent contacts too).
 
-use crate::common::closed_forms::{sphere_roots, torus_roots};
 use crate::reference::Certifier;
 use revolve::Ray;
 
-/// An exact surface of closed form, about the `y` axis through the origin.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ClosedForm {
-    /// The sphere of this radius about the origin.
-    Sphere { radius: f64 },
-    /// The torus whose tube of radius `minor` follows the circle of radius
-    /// `major` in the plane `y = 0`.
-    Torus { major: f64, minor: f64 },
-}
+pub use crate::common::closed_forms::ClosedForm;
 
 impl Certifier for ClosedForm {
     fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>> {
-        let roots = match *self {
-            ClosedForm::Sphere { radius } => sphere_roots(ray, radius),
-            ClosedForm::Torus { major, minor } => torus_roots(ray, major, minor),
-        }?;
-        Some(roots.first_in(t_min, t_max))
+        Some(self.roots(ray)?.first_in(t_min, t_max))
     }
 }
 

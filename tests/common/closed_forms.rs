@@ -17,6 +17,7 @@
 use super::exact_roots::{Poly, RealRoots, common_integers, product, scaled, sum};
 use num_bigint::BigInt;
 use revolve::Ray;
+use revolve::nalgebra::{Point3, Vector3};
 
 /// The ray's origin and direction and the given lengths as integers over
 /// one power of two: `([o, d], lengths)`.
@@ -62,13 +63,45 @@ pub fn torus_polynomial(ray: &Ray, major: f64, minor: f64) -> Option<Poly> {
     Some(sum(&product(&s, &s), &scaled(&radial, &-four_r2)))
 }
 
-/// The hits of `ray` with the sphere of radius `radius` about the origin.
-pub fn sphere_roots(ray: &Ray, radius: f64) -> Option<RealRoots> {
-    RealRoots::new(&sphere_polynomial(ray, radius)?)
+/// An exact surface of closed form about the `y` axis through the origin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ClosedForm {
+    /// The sphere of this radius about the origin.
+    Sphere { radius: f64 },
+    /// The torus whose tube of radius `minor` follows the circle of radius
+    /// `major > minor` in the plane `y = 0`.
+    Torus { major: f64, minor: f64 },
 }
 
-/// The hits of `ray` with the torus of radii `major > minor` about the `y`
-/// axis through the origin.
-pub fn torus_roots(ray: &Ray, major: f64, minor: f64) -> Option<RealRoots> {
-    RealRoots::new(&torus_polynomial(ray, major, minor)?)
+impl ClosedForm {
+    /// The roots `t` of the ray's equation, exactly; `None` for a
+    /// non-finite input or an equation that vanishes identically.
+    pub fn roots(&self, ray: &Ray) -> Option<RealRoots> {
+        let p = match *self {
+            ClosedForm::Sphere { radius } => sphere_polynomial(ray, radius),
+            ClosedForm::Torus { major, minor } => torus_polynomial(ray, major, minor),
+        }?;
+        RealRoots::new(&p)
+    }
+
+    /// The largest absolute coordinate of the surface.
+    pub fn scale(&self) -> f64 {
+        match *self {
+            ClosedForm::Sphere { radius } => radius,
+            ClosedForm::Torus { major, minor } => major + minor,
+        }
+    }
+
+    /// The outward unit normal at `p` on the surface (off it, that of the
+    /// nearest surface point; for the torus, `p` off the axis).
+    pub fn outward(&self, p: &Point3<f64>) -> Vector3<f64> {
+        match *self {
+            ClosedForm::Sphere { .. } => p.coords.normalize(),
+            ClosedForm::Torus { major, .. } => {
+                let rho = p.x.hypot(p.z);
+                let centre = Vector3::new(p.x / rho, 0.0, p.z / rho) * major;
+                (p.coords - centre).normalize()
+            }
+        }
+    }
 }
