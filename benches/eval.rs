@@ -1,6 +1,7 @@
 //! Evaluation benches: points, first derivatives and higher derivatives of
-//! Bézier curves and B-splines, the evaluation algorithms side by side, and the
-//! Cox–de Boor basis.
+//! Bézier curves and B-splines, the evaluation algorithms side by side, the
+//! Cox–de Boor basis, and NURBS against the B-spline of the same degree,
+//! knots and points (what the weights cost).
 //!
 //! Every measured iteration is ONE evaluation at the next parameter of a
 //! precomputed table of 1024 pseudo-random parameters (cycled), so the median
@@ -28,7 +29,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
 use revolve::curve::RationalBezier;
 use revolve::nalgebra::{Point, Point2, Vector3};
-use revolve::{BSpline, Bezier, Curve, CurveProjector};
+use revolve::{BSpline, Bezier, Curve, CurveProjector, Nurbs};
 
 /// Number of precomputed parameters; a power of two so that cycling is a mask.
 const N_T: usize = 1024;
@@ -208,6 +209,51 @@ fn bspline(c: &mut Criterion) {
     group.finish();
 }
 
+/// The cubic B-spline of [`cubic_bspline`] and NURBS on the same degree,
+/// knots and points: with weights drawn from `[0.5, 2]` (rational pieces:
+/// de Casteljau on homogeneous points, then the division) and with unit
+/// weights (the polynomial pieces, no division). Points and first
+/// derivatives, one parameter per iteration as above.
+fn nurbs(c: &mut Criterion) {
+    let n = POINT_COUNTS[1];
+    let spline = cubic_bspline(n);
+    let mut rng = Rng(0x4E);
+    let weights: Vec<f64> = (0..n).map(|_| rng.range(0.5, 2.0)).collect();
+    let rational = Nurbs::new(
+        3,
+        spline.knots().to_vec(),
+        spline.points().to_vec(),
+        weights,
+    )
+    .expect("valid NURBS");
+    let unit = Nurbs::from(spline.clone());
+    let ts = parameters(spline.domain(), 5);
+
+    for (what, with_derivative) in [("eval", false), ("eval_with_derivative", true)] {
+        let mut group = c.benchmark_group(format!("nurbs_vs_bspline_{what}_{n}_points"));
+        group.throughput(Throughput::Elements(1));
+        let id = |name: &str| BenchmarkId::new(name, "cubic");
+        if with_derivative {
+            bench_per_t(&mut group, id("bspline"), &spline, &ts, |c, t| {
+                c.eval_with_derivative(t)
+            });
+            bench_per_t(&mut group, id("nurbs"), &rational, &ts, |c, t| {
+                c.eval_with_derivative(t)
+            });
+            bench_per_t(&mut group, id("nurbs_unit_weights"), &unit, &ts, |c, t| {
+                c.eval_with_derivative(t)
+            });
+        } else {
+            bench_per_t(&mut group, id("bspline"), &spline, &ts, |c, t| c.eval(t));
+            bench_per_t(&mut group, id("nurbs"), &rational, &ts, |c, t| c.eval(t));
+            bench_per_t(&mut group, id("nurbs_unit_weights"), &unit, &ts, |c, t| {
+                c.eval(t)
+            });
+        }
+        group.finish();
+    }
+}
+
 /// The same 3D Bernstein polynomial evaluated three ways: de Casteljau (the
 /// library's evaluator; on a copy, since it works in place), the term-by-term
 /// Bernstein sum, and Horner on power-basis coefficients converted once up
@@ -330,7 +376,7 @@ fn nearest_point(c: &mut Criterion) {
 }
 
 fn config() -> Criterion {
-    // 41 benches; this keeps a full run around two and three quarter minutes.
+    // About 45 benches; this keeps a full run around three minutes.
     Criterion::default()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(2))
@@ -340,6 +386,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = overhead, bezier, bspline, algorithms, nearest_point
+    targets = overhead, bezier, bspline, nurbs, algorithms, nearest_point
 }
 criterion_main!(benches);

@@ -7,6 +7,9 @@
 //! intersector (as a degree-1 profile), on the same rays, with the same
 //! outputs (checked to agree): what the simplest surface of revolution costs
 //! without splines, and what the exact intersector's machinery costs on it.
+//! The same for a rational profile: a NURBS sphere (`Nurbs::arc`, two
+//! rational quarter arcs) through the exact intersector against the
+//! ray–sphere quadratic, on the same rays, outputs checked to agree.
 //!
 //! Each measured iteration is ONE ray from a precomputed set of 1024,
 //! cycled: the median reads as time per ray. Ray sets:
@@ -190,6 +193,7 @@ fn benches(c: &mut Criterion) {
     group.finish();
 
     bench_cylinder_floor(c);
+    bench_sphere_floor(c);
 }
 
 /// Radius and height of [`common::CYLINDER`].
@@ -277,6 +281,102 @@ fn bench_cylinder_floor(c: &mut Criterion) {
         bench.iter(|| {
             i = (i + 1) & MASK;
             black_box(&cylinder).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
+        })
+    });
+    group.finish();
+}
+
+/// Radius of the benchmarked sphere.
+const SPHERE_RADIUS: f64 = 1.0;
+
+/// The sphere of radius [`SPHERE_RADIUS`] about the origin in closed form
+/// (the stable ray–sphere quadratic), with every output the exact
+/// intersector gives: `t`, the point, the unit normal (into the ball, as
+/// the NURBS profile from the south to the north pole orients it), and
+/// `(u, v)` in the sphere's own parametrization, `u` the latitude in
+/// `[−π/2, π/2]` and `v` the angle of the contract
+/// (`S = (R cos u cos v, R sin u, −R cos u sin v)`).
+#[inline]
+fn closed_form_sphere(ray: &Ray, t_max: f64) -> Option<Hit> {
+    let r = SPHERE_RADIUS;
+    let (o, d) = (ray.origin, ray.dir);
+    let a = d.dot(&d);
+    let b = o.coords.dot(&d);
+    let c = o.coords.dot(&o.coords) - r * r;
+    let disc = b * b - a * c;
+    if a == 0.0 || disc < 0.0 {
+        return None;
+    }
+    // The root without cancellation, and its partner from the product.
+    let q = -(b + b.signum() * disc.sqrt());
+    let (t0, t1) = (q / a, c / q);
+    let (t0, t1) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
+    let t = if t0 > 0.0 { t0 } else { t1 };
+    if !(t > 0.0 && t < t_max) {
+        return None;
+    }
+    let p = o + d * t;
+    let normal = Unit::new_unchecked(-p.coords / r);
+    let u = (p.y / r).clamp(-1.0, 1.0).asin();
+    let v = (-p.z).atan2(p.x).rem_euclid(std::f64::consts::TAU);
+    Some(Hit {
+        t,
+        point: p,
+        normal,
+        uv: (u, v),
+    })
+}
+
+/// A NURBS sphere through the exact intersector against the closed-form
+/// sphere, on the same random rays. The set-up checks that both give the
+/// same hits (`t`, point, normal, and the angle `v`; `u` follows each one's
+/// own parametrization of the meridian).
+fn bench_sphere_floor(c: &mut Criterion) {
+    let sphere = Revolution::new(common::conic_profiles::sphere_profile(SPHERE_RADIUS));
+    assert!(sphere.has_exact_intersector());
+    let rays = box_rays(&sphere.bounds(), false, 6);
+    let mut hits = 0;
+    for ray in &rays {
+        let exact = sphere.intersect(ray, 0.0, f64::INFINITY);
+        let closed = closed_form_sphere(ray, f64::INFINITY);
+        match (exact, closed) {
+            (None, None) => {}
+            (Some(e), Some(c)) => {
+                hits += 1;
+                // Relative errors of 1e-12 plus 64 ulps amplified by the
+                // hit's condition |d|/|d·n| (near-grazing rays); v as an
+                // arc length on its parallel of radius ρ.
+                let kappa = ray.dir.norm() / ray.dir.dot(&c.normal).abs();
+                let tol = 1e-12 + 64.0 * f64::EPSILON * kappa;
+                let rho = c.point.x.hypot(c.point.z);
+                let dv = (e.uv.1 - c.uv.1).abs();
+                let dv = dv.min((dv - std::f64::consts::TAU).abs());
+                let agree = (e.t - c.t).abs() <= tol * c.t.max(1.0)
+                    && (e.point - c.point).norm() <= tol * SPHERE_RADIUS
+                    && (e.normal.into_inner() - c.normal.into_inner()).norm() <= tol
+                    && dv * rho <= tol * SPHERE_RADIUS;
+                assert!(
+                    agree,
+                    "closed form and exact differ on {ray:?}: {e:?} vs {c:?}"
+                );
+            }
+            (e, cf) => panic!("closed form and exact disagree on {ray:?}: {e:?} vs {cf:?}"),
+        }
+    }
+    eprintln!("sphere: {hits} of {N_RAYS} rays hit (closed form and exact NURBS agree)");
+    let mut group = c.benchmark_group("intersect_sphere");
+    let mut i = 0;
+    group.bench_function(BenchmarkId::new("closed_form", "random"), |bench| {
+        bench.iter(|| {
+            i = (i + 1) & MASK;
+            closed_form_sphere(black_box(&rays[i]), f64::INFINITY)
+        })
+    });
+    let mut i = 0;
+    group.bench_function(BenchmarkId::new("exact_nurbs", "random"), |bench| {
+        bench.iter(|| {
+            i = (i + 1) & MASK;
+            black_box(&sphere).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
         })
     });
     group.finish();

@@ -6,8 +6,10 @@
 //! cargo run --release --example accuracy_cost [-- --quick] [--out DIR]
 //! ```
 //!
-//! On the vase (one cubic Bézier) and the wine glass (a 25-point uniform
-//! cubic B-spline) it measures
+//! On the vase (one cubic Bézier), the wine glass (a 25-point uniform
+//! cubic B-spline), and two rational revolutions, a NURBS sphere and a
+//! NURBS torus (quarter arcs of `Nurbs::arc` and `Nurbs::circle`), it
+//! measures
 //! - revolve's exact intersector at tolerances `1e-3 … 1e-14`, and the same
 //!   profiles given as own curves (no Bézier spans: approximation + Newton);
 //! - revolve's generic Newton intersector at several patch-tree depths and
@@ -17,7 +19,9 @@
 //! - the profile tessellated and ray-cast as a parry3d `TriMesh`
 //!   ([`mesh_baseline`]), with its build time and memory;
 //!
-//! against hits computed in exact rational arithmetic ([`reference`]): the
+//! against hits computed in exact rational arithmetic ([`reference`]; for
+//! the sphere and the torus, their closed forms solved exactly,
+//! [`closed_form`]): the
 //! median and maximum error of `t` relative to the object's size, miss,
 //! false-hit and wrong-root rates, rays per second on one thread (median of
 //! repeated passes), heap held and build time. The curve part ([`curves`])
@@ -30,6 +34,7 @@
 //! (deviation against samples) to `DIR` (default `out/accuracy_cost`).
 //! `--quick` runs every code path at a tiny size (CI).
 
+mod closed_form;
 #[path = "../../tests/common/mod.rs"]
 mod common;
 mod course;

@@ -42,7 +42,7 @@ pub const FAR_HIT: f64 = 1e-3;
 /// One row of the intersection table and one point of the plot.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
-    /// `"vase"` or `"wine glass"`.
+    /// The shape: `"vase"`, `"wine glass"`, `"NURBS sphere"`, `"NURBS torus"`.
     pub shape: &'static str,
     /// The plot series.
     pub series: String,

@@ -68,6 +68,24 @@ pub enum Reference {
     Ambiguous,
 }
 
+/// What the study needs of a reference: for each ray, the certified
+/// nearest hit or miss, or nothing certain (the ray is left out).
+pub trait Certifier: Sync {
+    /// The nearest hit's `t` with `t_min < t < t_max` (`Some(None)`: a
+    /// certain miss); `None` when the answer cannot be certified.
+    fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>>;
+}
+
+impl Certifier for ExactProfile {
+    fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>> {
+        match self.nearest(ray, t_min, t_max) {
+            Reference::Hit { t, .. } => Some(Some(t)),
+            Reference::Miss => Some(None),
+            Reference::Ambiguous => None,
+        }
+    }
+}
+
 impl ExactProfile {
     /// One Bézier curve (degree ≥ 1), `u ∈ [0, 1]`.
     pub fn from_bezier(points: &[Point2<f64>]) -> Self {

@@ -11,6 +11,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// The shapes [`collect`] measures.
+pub const SHAPES: usize = 4;
+
 /// Errors below this are drawn at it on the log axis (a `t` equal to the
 /// reference's rounded value has error 0).
 pub const ERROR_FLOOR: f64 = 1e-17;
@@ -43,10 +46,11 @@ impl Results {
     }
 }
 
-/// Runs the intersection study on both shapes, then the curve study,
-/// advancing `bar`.
+/// Runs the intersection study on every shape (the vase, the wine glass,
+/// and the rational sphere and torus), then the curve study, advancing
+/// `bar`.
 pub fn collect(plan: &Plan, quick: bool, bar: &ProgressBar) -> Results {
-    bar.set_length((2 * plan.rows()) as u64);
+    bar.set_length((SHAPES * plan.rows()) as u64);
     let mut results = Results {
         shapes: Vec::new(),
         rows: Vec::new(),
@@ -54,6 +58,8 @@ pub fn collect(plan: &Plan, quick: bool, bar: &ProgressBar) -> Results {
     };
     shape(&study::vase(), plan, bar, &mut results);
     shape(&study::wine_glass(), plan, bar, &mut results);
+    shape(&study::sphere(), plan, bar, &mut results);
+    shape(&study::torus(), plan, bar, &mut results);
     let base = bar.position();
     bar.set_message("curves");
     results.curves = curves::study(quick, &mut |done, total| {
@@ -73,7 +79,7 @@ fn shape<C: Curve<2> + Clone>(
     let bounds = Revolution::new(shape.profile.clone()).bounds();
     let rays = study::random_rays(&bounds, plan.rays, 0xACC0 + results.shapes.len() as u64);
     let start = Instant::now();
-    let cases: Cases = study::reference_cases(&shape.exact, &rays, bounds.scale());
+    let cases: Cases = study::reference_cases(shape.reference.as_ref(), &rays, bounds.scale());
     results.shapes.push(ShapeSummary {
         name: shape.name,
         rays: cases.cases.len(),
@@ -183,8 +189,11 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
         md,
         "Written by `cargo run --release --example accuracy_cost`. Random rays through \
          each shape's bounding box, {} per shape; errors are `|t − t_exact| / object size` \
-         against hits computed in exact rational arithmetic; rays/s is the median of {} \
-         passes on one thread.\n",
+         against hits computed in exact arithmetic (the spline profiles' own hits in \
+         rational arithmetic; for the NURBS sphere and torus, the exact sphere and torus: \
+         the ray–sphere quadratic and ray–torus quartic solved exactly, which the NURBS \
+         profiles match to about 1e-16 of their size); rays/s is the median of {} \
+         passes on one thread; memory is the heap each method holds per object.\n",
         plan.rays, plan.repeats
     );
     for s in &results.shapes {
@@ -220,8 +229,8 @@ mod tests {
     fn quick_study_writes_tables_and_plots() {
         let plan = Plan::quick();
         let results = collect(&plan, true, &ProgressBar::hidden());
-        assert_eq!(results.rows.len(), 2 * plan.rows());
-        assert_eq!(results.shapes.len(), 2);
+        assert_eq!(results.rows.len(), SHAPES * plan.rows());
+        assert_eq!(results.shapes.len(), SHAPES);
         for s in &results.shapes {
             assert_eq!(s.rays + s.ambiguous, plan.rays, "{}", s.name);
         }
@@ -246,6 +255,8 @@ mod tests {
         let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
         assert!(md.contains("| vase | revolve exact | tol 1e-3 |"));
         assert!(md.contains("| wine glass | parry TriMesh |"));
+        assert!(md.contains("| NURBS sphere | revolve exact | tol 1e-14 |"));
+        assert!(md.contains("| NURBS torus | parry TriMesh |"));
         assert!(md.contains("## Curves"));
         let svg = std::fs::read_to_string(dir.join("intersection.svg")).unwrap();
         assert!(svg.contains("course Newton") && !svg.contains("NaN"));

@@ -4,18 +4,20 @@
 //! For each shape, random rays run from a sphere around the bounding box
 //! through a random point of the box (hits and misses mixed, as in
 //! rendering). The exact reference ([`ExactProfile`]) answers each ray in
-//! rational arithmetic; rays it cannot certify (tangent contacts) are left
-//! out and counted. Every method then traces the same rays twice: once for
+//! rational arithmetic, and for the rational shapes (a NURBS sphere and
+//! torus) the closed forms solved exactly ([`ClosedForm`]); rays a
+//! reference cannot certify (tangent contacts) are left out and counted. Every method then traces the same rays twice: once for
 //! its answers (errors against the reference), then `repeats` timed passes on
 //! one thread, of which the median rate is reported.
 
+use crate::closed_form::ClosedForm;
 use crate::course::CourseNewton;
 use crate::memory;
 use crate::mesh_baseline::MeshBaseline;
 use crate::model::{ErrorStats, FAR_HIT, Method, Row};
-use crate::reference::{ExactProfile, Reference};
+use crate::reference::{Certifier, ExactProfile};
 use revolve::{
-    Aabb, BSpline, Bezier, Curve, Intersect, NewtonIntersector, Ray, Revolution, Tolerance,
+    Aabb, BSpline, Bezier, Curve, Intersect, NewtonIntersector, Nurbs, Ray, Revolution, Tolerance,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -83,12 +85,12 @@ impl Plan {
     }
 }
 
-/// A shape of the study: its profile, revolved, and the same profile in
-/// exact form.
+/// A shape of the study: its profile, revolved, and the reference that
+/// certifies its rays.
 pub struct Shape<C> {
     pub name: &'static str,
     pub profile: C,
-    pub exact: ExactProfile,
+    pub reference: Box<dyn Certifier>,
 }
 
 /// The vase: one cubic Bézier.
@@ -98,7 +100,7 @@ pub fn vase() -> Shape<Bezier<2>> {
     Shape {
         name: "vase",
         profile,
-        exact,
+        reference: Box::new(exact),
     }
 }
 
@@ -109,7 +111,36 @@ pub fn wine_glass() -> Shape<BSpline<2>> {
     Shape {
         name: "wine glass",
         profile,
-        exact,
+        reference: Box::new(exact),
+    }
+}
+
+/// The sphere's radius.
+pub const SPHERE_RADIUS: f64 = 1.0;
+
+/// The torus's radii: the tube's centre circle and the tube.
+pub const TORUS_RADII: (f64, f64) = (1.0, 0.375);
+
+/// A sphere as a rational revolution: the NURBS half circle from pole to
+/// pole (`Nurbs::arc`, two quarter arcs) about the axis.
+pub fn sphere() -> Shape<Nurbs<2>> {
+    Shape {
+        name: "NURBS sphere",
+        profile: crate::common::conic_profiles::sphere_profile(SPHERE_RADIUS),
+        reference: Box::new(ClosedForm::Sphere {
+            radius: SPHERE_RADIUS,
+        }),
+    }
+}
+
+/// A torus as a rational revolution: the NURBS circle off the axis
+/// (`Nurbs::circle`, four quarter arcs) about it.
+pub fn torus() -> Shape<Nurbs<2>> {
+    let (major, minor) = TORUS_RADII;
+    Shape {
+        name: "NURBS torus",
+        profile: crate::common::conic_profiles::torus_profile(major, minor),
+        reference: Box::new(ClosedForm::Torus { major, minor }),
     }
 }
 
@@ -146,23 +177,19 @@ pub fn random_rays(bounds: &Aabb, count: usize, seed: u64) -> Vec<Ray> {
     rays
 }
 
-/// The reference answers for `rays` (in parallel: the rational arithmetic
-/// is the slow part of a run).
-pub fn reference_cases(exact: &ExactProfile, rays: &[Ray], scale: f64) -> Cases {
-    let answers: Vec<Reference> = rays
+/// The reference answers for `rays` (in parallel: the exact arithmetic is
+/// the slow part of a run).
+pub fn reference_cases(reference: &dyn Certifier, rays: &[Ray], scale: f64) -> Cases {
+    let answers: Vec<Option<Option<f64>>> = rays
         .par_iter()
-        .map(|r| exact.nearest(r, 0.0, T_MAX))
+        .map(|r| reference.certify(r, 0.0, T_MAX))
         .collect();
     let mut cases = Vec::with_capacity(rays.len());
     let mut ambiguous = 0;
     for (ray, answer) in rays.iter().zip(answers) {
         match answer {
-            Reference::Hit { t, .. } => cases.push(Case {
-                ray: *ray,
-                t: Some(t),
-            }),
-            Reference::Miss => cases.push(Case { ray: *ray, t: None }),
-            Reference::Ambiguous => ambiguous += 1,
+            Some(t) => cases.push(Case { ray: *ray, t }),
+            None => ambiguous += 1,
         }
     }
     Cases {
@@ -458,7 +485,11 @@ mod tests {
         let glass = wine_glass();
         let surface = Revolution::new(glass.profile.clone());
         let b = surface.bounds();
-        let cases = reference_cases(&glass.exact, &random_rays(&b, 200, 11), b.scale());
+        let cases = reference_cases(
+            glass.reference.as_ref(),
+            &random_rays(&b, 200, 11),
+            b.scale(),
+        );
         assert!(cases.ambiguous <= 2, "{} ambiguous", cases.ambiguous);
         let hits = cases.cases.iter().filter(|c| c.t.is_some()).count();
         assert!(hits > 50, "only {hits} hits");
@@ -473,6 +504,31 @@ mod tests {
         assert!(rate > 0.0);
     }
 
+    /// The same claim for the rational shapes against their closed forms:
+    /// the NURBS sphere and torus get the exact intersector, which misses
+    /// nothing and hits nothing false on certified rays, at rounding level.
+    #[test]
+    fn rational_shapes_match_their_closed_forms() {
+        for shape in [sphere(), torus()] {
+            let surface = Revolution::new(shape.profile.clone());
+            assert!(surface.has_exact_intersector(), "{}", shape.name);
+            let b = surface.bounds();
+            let rays = random_rays(&b, 300, 17);
+            let cases = reference_cases(shape.reference.as_ref(), &rays, b.scale());
+            assert_eq!(cases.ambiguous, 0, "{}", shape.name);
+            let hits = cases.cases.iter().filter(|c| c.t.is_some()).count();
+            assert!(hits > 100, "{}: only {hits} hits", shape.name);
+            let mut m = Exact {
+                surface,
+                tolerance: 4.0 * f64::EPSILON,
+            };
+            let (e, _) = measure(&mut m, &cases, 1);
+            assert_eq!(e.miss_rate, 0.0, "{}", shape.name);
+            assert_eq!(e.false_hit_rate, 0.0, "{}", shape.name);
+            assert!(e.max < 1e-12, "{}: max error {:e}", shape.name, e.max);
+        }
+    }
+
     /// The glass's profile given as an own curve (no Bézier spans): its
     /// approximation refined on the curve agrees with the rational
     /// reference on certified rays as the exact intersector does.
@@ -482,7 +538,11 @@ mod tests {
         let surface = Revolution::new(OwnCurve(glass.profile.clone()));
         assert!(!surface.has_exact_intersector());
         let b = Revolution::new(glass.profile.clone()).bounds();
-        let cases = reference_cases(&glass.exact, &random_rays(&b, 400, 13), b.scale());
+        let cases = reference_cases(
+            glass.reference.as_ref(),
+            &random_rays(&b, 400, 13),
+            b.scale(),
+        );
         let hits = cases.cases.iter().filter(|c| c.t.is_some()).count();
         assert!(hits > 100, "only {hits} hits");
         let mut m = Approximated {

@@ -12,8 +12,15 @@
 //! - [`CountingAllocator`] and [`allocations_in`]: per-thread allocation
 //!   counting (each test binary declares the `#[global_allocator]` itself).
 //! - [`assert_close`].
+//! - Rational revolutions: [`conic_profiles`] (the sphere's and the torus's
+//!   NURBS profiles), [`closed_forms`] (their ray equations with exact
+//!   coefficients) and [`exact_roots`] (exact real-root isolation).
 
 #![allow(dead_code)]
+
+pub mod closed_forms;
+pub mod conic_profiles;
+pub mod exact_roots;
 
 use revolve::nalgebra::{Point2, Point3, Vector3};
 use revolve::{Aabb, BSpline, Bezier, Hit, Ray, Revolution, Surface};
