@@ -606,6 +606,37 @@ fn grazing_the_sphere_silhouette_on_both_sides() {
     }
 }
 
+/// Rays perpendicular to the axis (`d_y = 0`) grazing the sphere's circle
+/// of latitude at their height, `1e-10` and `1e-11` of the radius inside
+/// (two hits) and outside (a miss), at every height including near the
+/// poles, where the circle is small and the profile nearly flat: the
+/// height root must be refined before the circle it gives decides the hit
+/// (isolated only to `2⁻³⁰`, its radius was off by more than the graze).
+#[test]
+fn perpendicular_rays_grazing_circles_of_latitude_deeply() {
+    let s = sphere();
+    let mut rng = Rng(0x9E7);
+    for i in 0..400 {
+        let h = RADIUS
+            * if i % 4 == 0 {
+                rng.range(0.95, 0.999)
+            } else {
+                rng.range(-0.999, 0.999)
+            };
+        let x = (RADIUS * RADIUS - h * h).sqrt();
+        let phi = rng.range(0.0, TAU);
+        let d = Vector3::new(phi.cos(), 0.0, phi.sin());
+        let e = Vector3::new(-phi.sin(), 0.0, phi.cos());
+        for delta in [1e-10, 1e-11] {
+            for (side, count) in [(-1.0, 2), (1.0, 0)] {
+                let rho = x + side * delta * RADIUS;
+                let ray = Ray::new(Point3::new(0.0, h, 0.0) + e * rho - d * 3.0 * RADIUS, d);
+                expect_hits(&s, &ray, count);
+            }
+        }
+    }
+}
+
 /// Rays grazing the torus's outer silhouettes on both sides: the outer
 /// equator (lines in its plane at distance `(R + r)(1 ∓ δ)` from the axis,
 /// and tilted by `1e-3`; vertical lines at that radius) and the top and

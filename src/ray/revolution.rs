@@ -778,12 +778,17 @@ impl SpanTable {
         if q.d.y == 0.0 {
             // Perpendicular to the axis: the ray stays at height o_y, and
             // crosses the circle of each root's radius.
-            let times = |s: f64| circle_times(q, span.x(s));
+            // The root is refined on y(s) = o_y first: its radius decides
+            // whether a grazing ray crosses the circle at all.
+            let times = |s: f64| {
+                let s = height_root(span, q.o.y, s);
+                (s, circle_times(q, span.x(s)))
+            };
             span.with_height_polynomial(q.o.y, |g, err| {
                 self.root_hits(k, span, q, g, err, times, t_floor, t_best, best, report);
             });
         } else {
-            let times = |s: f64| candidate_times(span, q, s);
+            let times = |s: f64| (s, candidate_times(span, q, s));
             span.with_hit_polynomial(q, &self.weights, |f, err| {
                 self.root_hits(k, span, q, f, err, times, t_floor, t_best, best, report);
             });
@@ -804,7 +809,7 @@ impl SpanTable {
         q: &Query,
         poly: &Q,
         err: f64,
-        times: impl Fn(f64) -> [Option<f64>; 2],
+        times: impl Fn(f64) -> (f64, [Option<f64>; 2]),
         t_floor: f64,
         t_best: &mut f64,
         best: &mut Option<LocalHit>,
@@ -815,9 +820,10 @@ impl SpanTable {
             QuickRoots::One(s) => {
                 // At most two candidates: sorted on the stack.
                 report.roots += 1;
+                let (s, ts) = times(s);
                 let mut pair = [(0.0, s); 2];
                 let mut n = 0;
-                for t in times(s).into_iter().flatten() {
+                for t in ts.into_iter().flatten() {
                     if t.is_finite() {
                         pair[n].0 = t;
                         n += 1;
@@ -834,7 +840,8 @@ impl SpanTable {
                 find_roots_to(poly.coeffs(), err, CANDIDATE_WIDTH, |root| {
                     report.roots += 1;
                     for s in root_samples(root) {
-                        for t in times(s).into_iter().flatten() {
+                        let (s, ts) = times(s);
+                        for t in ts.into_iter().flatten() {
                             cands.push(t, s);
                         }
                     }
@@ -1011,6 +1018,36 @@ fn candidate_times<P: SpanForm>(span: P, q: &Query, s: f64) -> [Option<f64>; 2] 
             _ => [Some(t_height), None],
         }
     }
+}
+
+/// The root `s0` of `y(s) = h` (as isolated, to [`CANDIDATE_WIDTH`])
+/// refined by Newton's method on the span: at most four steps, each kept
+/// only if it brings `y` closer to `h` and stays within the isolating
+/// width of `s0` and in `[0, 1]`.
+#[inline(always)]
+fn height_root<P: SpanForm>(span: P, h: f64, s0: f64) -> f64 {
+    let (lo, hi) = (
+        (s0 - CANDIDATE_WIDTH).max(0.0),
+        (s0 + CANDIDATE_WIDTH).min(1.0),
+    );
+    let mut s = s0;
+    let mut p = span.point(s);
+    for _ in 0..4 {
+        let g = p.y - h;
+        if g == 0.0 || p.dy == 0.0 {
+            break;
+        }
+        let next = s - g / p.dy;
+        if !(next >= lo && next <= hi) {
+            break;
+        }
+        let q = span.point(next);
+        if (q.y - h).abs() >= g.abs() {
+            break;
+        }
+        (s, p) = (next, q);
+    }
+    s
 }
 
 /// The root of `x(s)` (Bernstein coefficients `xs`) near `s0`: Newton's
