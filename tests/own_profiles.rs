@@ -242,6 +242,33 @@ fn own_curve_secondary_ray_finds_the_far_side() {
     assert!((far.t - 2.0).abs() < 1e-12, "far side at {}", far.t);
 }
 
+/// Walking a ray through the own-curve sphere as secondary rays do (from
+/// each hit's `t`): every line through the inner 95% of the ball gives
+/// exactly its two hits, the entry and the exit, never the entry again a
+/// rounding step later (the refined hit once passed `t_min` by an ulp).
+#[test]
+fn own_curve_secondary_rays_do_not_hit_their_start_again() {
+    let mut rng = Rng(0x5EED_0002);
+    let s = sphere(1.0);
+    for _ in 0..4000 {
+        let origin = Point3::from(rng.direction() * 3.0);
+        let target = in_ball(&mut rng, 0.95);
+        let ray = Ray::new(origin, (target - origin) * rng.range(0.5, 2.0));
+        let first = s.intersect(&ray, 0.0, f64::INFINITY).expect("aimed inside");
+        let second = s
+            .intersect(&ray, first.t, f64::INFINITY)
+            .expect("the far side");
+        let dn = ray.dir.norm();
+        assert!(
+            (second.t - first.t) * dn > 1e-3,
+            "the entry at {} found again at {} for {ray:?}",
+            first.t,
+            second.t
+        );
+        assert!(s.intersect(&ray, second.t, f64::INFINITY).is_none());
+    }
+}
+
 /// A curve whose domain is `(start, end)` and whose values are a vertical
 /// segment at x = 1 (NaN where `nan_from` says).
 #[derive(Debug)]

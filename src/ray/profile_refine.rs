@@ -8,6 +8,13 @@ use super::turn_angle::turn_angle;
 use crate::{Curve, Tolerance};
 use nalgebra::{Point3, Vector3};
 
+/// The residual within which a refined hit is accepted:
+/// `max(tolerance, 1e-12) ×` the object's `scale` (and the origin's
+/// distance `|o|`, whose rounding `o + t·d` carries).
+pub(crate) fn acceptance(scale: f64, o: &Vector3<f64>, tol: &Tolerance) -> f64 {
+    (tol.relative * scale).max(ACCEPT * scale.max(o.amax()))
+}
+
 /// Newton's method in the meridian plane ([`meridian_newton`]) on `profile`
 /// over its `domain`, for the local ray `o + t·d`, from the approximation's
 /// hit `(u, t) = start`. The hit is kept if the residual on the profile is
@@ -26,7 +33,7 @@ pub(crate) fn refine_on_profile<C: Curve<2>>(
     iterations: &mut u32,
 ) -> Option<LocalHit> {
     let target = tol.relative * scale;
-    let accept = target.max(ACCEPT * scale.max(o.amax()));
+    let accept = acceptance(scale, o, tol);
     let eval = |u: f64| {
         let (p, dp) = profile.eval_with_derivative(u);
         ProfilePoint {

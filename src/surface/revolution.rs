@@ -2,7 +2,7 @@
 
 use super::profile_approximation::approximate;
 use crate::curve::RationalBezierSpan;
-use crate::ray::profile_refine::refine_on_profile;
+use crate::ray::profile_refine::{acceptance, refine_on_profile};
 use crate::ray::revolution::{ExactReport, SpanTable};
 use crate::{Aabb, Curve, Error, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{
@@ -332,6 +332,12 @@ impl<C: Curve<2>> Revolution<C> {
     ) -> Option<crate::ray::revolution::LocalHit> {
         let (r_max, y_range) = table.local_bounds();
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
+        // As in the exact intersector, a hit within the position
+        // uncertainty of the origin is the origin itself (a secondary ray
+        // leaving the surface): the floor is `accept/|d|` past `t_min`.
+        let m = d.amax();
+        let dn = m * (d / m).norm();
+        let t_floor = t_min + acceptance(scale, &o.coords, &self.tolerance) / dn;
         let mut from = t_min;
         for _ in 0..REFINE_TRIES {
             let guess = table.intersect(o, d, from, t_max, &self.tolerance, report)?;
@@ -345,7 +351,7 @@ impl<C: Curve<2>> Revolution<C> {
                 &self.tolerance,
                 &mut report.iterations,
             );
-            if let Some(hit) = refined.filter(|h| h.t > t_min && h.t < t_max) {
+            if let Some(hit) = refined.filter(|h| h.t > t_floor && h.t < t_max) {
                 return Some(hit);
             }
             from = guess.t;
