@@ -1362,3 +1362,23 @@ fn evaluation_does_not_allocate_up_to_degree_16() {
         assert_eq!(count, 0, "degree {degree}");
     }
 }
+
+/// Arcs whose ends are at multiples of π/2 end exactly on the axes (a
+/// sphere's profile meets the axis exactly at its poles).
+#[test]
+fn arc_ends_at_quarter_turns_are_exact() {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let c = Point2::new(0.25, -2.0);
+    let half = Nurbs::arc(c, 1.5, -FRAC_PI_2, FRAC_PI_2).unwrap();
+    assert_eq!(half.eval(0.0), Point2::new(0.25, -3.5));
+    assert_eq!(half.eval(1.0), Point2::new(0.25, -0.5));
+    assert_eq!(half.eval(0.5), Point2::new(1.75, -2.0));
+    let upper = Nurbs::arc(Point2::origin(), 2.0, 0.0, PI).unwrap();
+    assert_eq!(upper.eval(1.0), Point2::new(-2.0, 0.0));
+    let three = Nurbs::arc(Point2::origin(), 1.0, 3.0 * PI, 3.0 * FRAC_PI_2 + 2.0 * PI).unwrap();
+    assert_eq!(three.eval(0.0), Point2::new(-1.0, 0.0));
+    assert_eq!(three.eval(1.0), Point2::new(0.0, -1.0));
+    // Angles off the axes keep their own directions.
+    let tilted = Nurbs::arc(Point2::origin(), 1.0, 0.1, 1.0).unwrap();
+    assert_eq!(tilted.eval(0.0), Point2::new(0.1f64.cos(), 0.1f64.sin()));
+}

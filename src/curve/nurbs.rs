@@ -636,7 +636,10 @@ impl Nurbs<2> {
     /// (`center + 2·radius·(uᵢ + uᵢ₊₁)/|uᵢ + uᵢ₊₁|²`, weight `|uᵢ + uᵢ₊₁|/2`),
     /// so each piece is exactly the circular arc between its rounded end
     /// points. The interior knots `i/m` are double; the arc starts at angle
-    /// `start` at `t = 0` and ends at angle `end` at `t = 1`.
+    /// `start` at `t = 0` and ends at angle `end` at `t = 1`. An angle
+    /// within rounding (`4ε·max(|angle|, 1)`) of a multiple of `π/2` gives
+    /// the exact axis direction, so `arc(c, r, −π/2, π/2)` (a sphere's
+    /// profile) ends exactly on the axis, not `6e-17·r` off it.
     ///
     /// # Errors
     /// As [`circle`](Self::circle) for the center and radius;
@@ -668,7 +671,7 @@ impl Nurbs<2> {
         let sweep = if full { TAU } else { sweep };
         let m = ((sweep / FRAC_PI_2).ceil() as usize).clamp(1, 4);
         let step = sweep / m as f64;
-        let direction = |angle: f64| Vector2::new(angle.cos(), angle.sin());
+        let direction = axis_snapped_direction;
         let first = direction(start);
         let last = if full { first } else { direction(end) };
         let mut points = Vec::with_capacity(2 * m + 1);
@@ -934,4 +937,22 @@ fn check_circle(center: Point2<f64>, radius: f64) -> Result<(), Error> {
         return Err(Error::InvalidRadius { radius });
     }
     Ok(())
+}
+
+/// `(cos θ, sin θ)`, exactly `(±1, 0)` or `(0, ±1)` when `θ` is within
+/// rounding (`4ε·max(|θ|, 1)`) of a multiple of `π/2` (where `cos` and `sin`
+/// of the rounded angle give `6e-17` instead of 0).
+fn axis_snapped_direction(angle: f64) -> Vector2<f64> {
+    let quarters = (angle / FRAC_PI_2).round();
+    let near = (angle - quarters * FRAC_PI_2).abs() <= 4.0 * f64::EPSILON * angle.abs().max(1.0);
+    if near && quarters.abs() < 1e15 {
+        match (quarters as i64).rem_euclid(4) {
+            0 => Vector2::new(1.0, 0.0),
+            1 => Vector2::new(0.0, 1.0),
+            2 => Vector2::new(-1.0, 0.0),
+            _ => Vector2::new(0.0, -1.0),
+        }
+    } else {
+        Vector2::new(angle.cos(), angle.sin())
+    }
 }
