@@ -275,3 +275,49 @@ fn bad_placements_are_errors() {
         .unwrap();
     assert_rel(hit.t, 9.0, 1e-15, "t");
 }
+
+/// An axis within 1e-154 of `−y` (its cross product with `y` has subnormal
+/// squares): the placement is still a rotation, so normals and mesh normals
+/// are unit vectors and points keep their distance from the axis.
+#[test]
+fn axes_within_a_subnormal_angle_of_the_y_axis_give_a_rotation() {
+    use revolve::nalgebra::Unit;
+    let profile = Bezier::new(vec![
+        Point2::new(0.0, -1.0),
+        Point2::new(2.0, -1.0),
+        Point2::new(2.0, 1.0),
+        Point2::new(0.0, 1.0),
+    ])
+    .unwrap();
+    for axis in [
+        Vector3::new(2.3e-158, -1.0, 8.8e-191),
+        Vector3::new(-1e-200, 1.0, 3e-170),
+        Vector3::new(1e-160, -1.0, -1e-160),
+    ] {
+        let origin = Point3::new(-7.8, 2.4, 2.7);
+        let s = Revolution::new(profile.clone()).with_axis(origin, Unit::new_normalize(axis));
+        for k in 0..20 {
+            let (u, v) = (k as f64 / 19.0, 0.3 * k as f64);
+            if let Some(n) = s.normal(u, v) {
+                assert!(
+                    (n.norm() - 1.0).abs() <= 4.0 * f64::EPSILON,
+                    "{axis:?}: |n| = {}",
+                    n.norm()
+                );
+            }
+            let local = s.eval(u, v) - origin;
+            let radial = (local - Vector3::y() * local.dot(&Vector3::y())).norm();
+            let x = revolve::Curve::eval(&profile, u).x;
+            assert!(
+                (radial - x).abs() <= 1e-14 * 4.0,
+                "{axis:?}: radius {radial} vs {x}"
+            );
+        }
+        let mesh = s.tessellate(0.5).unwrap();
+        assert!(
+            mesh.normals
+                .iter()
+                .all(|n| (n.norm() - 1.0).abs() <= 4.0 * f64::EPSILON)
+        );
+    }
+}

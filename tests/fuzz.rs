@@ -27,7 +27,8 @@ use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2
 use revolve::surface::BoundedSurface;
 use revolve::{
     Aabb, BSpline, Bezier, BezierSpan, Curve, Error, Hit, Intersect, MAX_COORDINATE, Mesh,
-    NewtonIntersector, Ray, Revolution, Surface, Tolerance,
+    NewtonIntersector, Nurbs, RationalBezier, RationalBezierSpan, Ray, Revolution, Surface,
+    Tolerance,
 };
 use std::any::Any;
 use std::cell::RefCell;
@@ -567,11 +568,18 @@ impl Fuzz {
                 || format!("{kind}: {huge} segments gave {r:?}"),
             );
         }
-        if let Some(spans) = self.call("Curve::bezier_spans", || c.bezier_spans()) {
+        if let Some(spans) = self.call("Curve::rational_bezier_spans", || c.rational_bezier_spans())
+        {
             let spans = spans.unwrap_or_default();
-            self.check(!spans.is_empty(), "Curve::bezier_spans", || {
+            self.check(!spans.is_empty(), "Curve::rational_bezier_spans", || {
                 format!("{kind}: no spans")
             });
+            self.spans_are_sane(kind, &spans, domain);
+        }
+        // Polynomial spans, where the curve has them, are the same pieces.
+        if let Some(Some(spans)) = self.call("Curve::bezier_spans", || c.bezier_spans()) {
+            let spans: Vec<RationalBezierSpan<D>> =
+                spans.into_iter().map(RationalBezierSpan::from).collect();
             self.spans_are_sane(kind, &spans, domain);
         }
     }
@@ -581,18 +589,19 @@ impl Fuzz {
     fn spans_are_sane<const D: usize>(
         &mut self,
         kind: &'static str,
-        spans: &[BezierSpan<D>],
+        spans: &[RationalBezierSpan<D>],
         domain: (f64, f64),
     ) {
         let mut end = domain.0;
         for (i, s) in spans.iter().enumerate() {
+            let (points, weights) = (s.curve.points().to_vec(), s.curve.weights().to_vec());
             let ok = s.knots.0 == end
                 && s.knots.0 < s.knots.1
                 && s.curve
                     .points()
                     .iter()
                     .all(|p| p.coords.iter().all(|c| c.abs() <= MAX_COORDINATE))
-                && Bezier::new(s.curve.points().to_vec()).is_ok();
+                && RationalBezier::new(points, weights).is_ok();
             self.check(ok, "Curve::bezier_spans", || {
                 format!("{kind}: span {i} of {}: {:?}", spans.len(), s.knots)
             });
@@ -899,6 +908,104 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
             f.flatten_check("BSpline", r, tolerance);
         }
     }
+    f.queries("BSpline", &s);
+    let times = if f.chance(8) { usize::MAX } else { f.below(3) };
+    if let Some(Ok(up)) = f.call("BSpline::elevate_degree", || s.elevate_degree(times)) {
+        f.own_curve("BSpline after elevate_degree", &up, |c, t, k| {
+            c.nth_derivative(t, k)
+        });
+    }
+
+    // Rational curves: the same points with random (sometimes bad) weights.
+    let weights = f.weights(n);
+    let copy = points.clone();
+    let w = weights.clone();
+    if let Some(Ok(c)) = f.call("RationalBezier::new", || RationalBezier::new(copy, w)) {
+        f.own_curve("RationalBezier", &c, |c, t, k| {
+            c.nth_derivative(t, k).unwrap_or_else(|_| SVector::zeros())
+        });
+        f.queries("RationalBezier", &c);
+    }
+    let copy = points.clone();
+    let knots = s.knots().to_vec();
+    let degree = s.degree();
+    let Some(Ok(r)) = f.call("Nurbs::new", || Nurbs::new(degree, knots, copy, weights)) else {
+        return;
+    };
+    f.own_curve("Nurbs", &r, |c, t, k| {
+        c.nth_derivative(t, k).unwrap_or_else(|_| SVector::zeros())
+    });
+    let t = f.parameter(r.domain());
+    let times = f.below(3);
+    if let Some(Ok(inserted)) = f.call("Nurbs::insert_knot", || r.insert_knot(t, times)) {
+        f.own_curve("Nurbs after insert_knot", &inserted, |c, t, k| {
+            c.nth_derivative(t, k).unwrap_or_else(|_| SVector::zeros())
+        });
+    }
+    let times = if f.chance(8) { usize::MAX } else { f.below(3) };
+    if let Some(Ok(up)) = f.call("Nurbs::elevate_degree", || r.elevate_degree(times)) {
+        f.own_curve("Nurbs after elevate_degree", &up, |c, t, k| {
+            c.nth_derivative(t, k).unwrap_or_else(|_| SVector::zeros())
+        });
+    }
+    if n <= 30 {
+        let tolerance = f.flatten_tolerance(scale);
+        if let Some(r) = f.call("Nurbs::flatten", || r.flatten(tolerance)) {
+            f.flatten_check("Nurbs", r, tolerance);
+        }
+    }
+    f.queries("Nurbs", &r);
+}
+
+impl Fuzz {
+    /// `n` weights: mostly in `[0.05, 20]`, sometimes extreme or invalid
+    /// (zero, negative, NaN, infinite), sometimes one too few.
+    fn weights(&mut self, n: usize) -> Vec<f64> {
+        let mut w: Vec<f64> = (0..n)
+            .map(|_| {
+                if self.chance(40) {
+                    self.extreme()
+                } else {
+                    0.05 * 400f64.powf(self.below(1001) as f64 / 1000.0)
+                }
+            })
+            .collect();
+        if self.chance(50) {
+            w.pop();
+        }
+        w
+    }
+
+    /// The nearest point to a random (sometimes invalid) point, and the arc
+    /// length at a random (sometimes invalid) tolerance: a finite answer
+    /// or an error, never a panic or NaN.
+    fn queries<const D: usize, C: Curve<D>>(&mut self, kind: &'static str, c: &C) {
+        // One curve in eight: a query costs far more than an evaluation.
+        if !self.chance(8) {
+            return;
+        }
+        let scale = self.scale();
+        let p: Point<f64, D> = Point::from(SVector::from_fn(|_, _| self.coordinate(scale)));
+        if let Some(Ok(near)) = self.call("Curve::nearest_point", || c.nearest_point(&p)) {
+            self.check(
+                near.distance.is_finite() && finite_point(&near.point) && near.t.is_finite(),
+                "Curve::nearest_point",
+                || format!("{kind}: {near:?}"),
+            );
+        }
+        let tolerance = if self.chance(4) {
+            self.number()
+        } else {
+            1e-6 * scale
+        };
+        if let Some(Ok(length)) = self.call("Curve::arc_length", || c.arc_length(tolerance)) {
+            self.check(
+                length.length.is_finite() && length.lower <= length.upper,
+                "Curve::arc_length",
+                || format!("{kind}: {length:?}"),
+            );
+        }
+    }
 }
 
 /// Users' curves that break the contract (and two that keep it) through
@@ -1023,12 +1130,23 @@ fn fuzz_boxes() {
 enum Profile {
     Bezier(Bezier<2>),
     BSpline(BSpline<2>),
+    Nurbs(Nurbs<2>),
     User(UserCurve),
 }
 
 fn profile(f: &mut Fuzz) -> Option<Profile> {
     let scale = f.scale();
-    match f.below(4) {
+    match f.below(5) {
+        4 => {
+            let n = 1 + f.below(10);
+            let points = f.points::<2>(n, scale);
+            let degree = f.below(4).min(n - 1);
+            let knots = f.knots(n, degree);
+            let weights = f.weights(n);
+            f.call("Nurbs::new", || Nurbs::new(degree, knots, points, weights))?
+                .ok()
+                .map(Profile::Nurbs)
+        }
         0 => {
             let n = 1 + f.below(6);
             let points = f.points::<2>(n, scale);
@@ -1069,6 +1187,7 @@ fn fuzz_revolutions() {
     fuzz("revolutions", 20_000, |f| match profile(f) {
         Some(Profile::Bezier(c)) => revolution_case(f, c, "Bezier", true),
         Some(Profile::BSpline(c)) => revolution_case(f, c, "BSpline", true),
+        Some(Profile::Nurbs(c)) => revolution_case(f, c, "Nurbs", true),
         Some(Profile::User(c)) => {
             let keeps_contract = matches!(c.kind, Kind::Sphere | Kind::Torus);
             revolution_case(f, c, kind_name(c.kind), keeps_contract)
@@ -1219,6 +1338,7 @@ fn fuzz_newton() {
     fuzz("newton", 3_000, |f| match profile(f) {
         Some(Profile::Bezier(c)) => newton_case(f, c),
         Some(Profile::BSpline(c)) => newton_case(f, c),
+        Some(Profile::Nurbs(c)) => newton_case(f, c),
         Some(Profile::User(c)) => newton_case(f, c),
         None => {}
     });

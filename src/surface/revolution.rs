@@ -441,7 +441,11 @@ impl<C: Curve<2>> Revolution<C> {
         let y = Vector3::y();
         let cross = y.cross(&axis);
         let angle = cross.norm().atan2(y.dot(&axis));
-        let rotation = match Unit::try_new(cross, 0.0) {
+        // Scaled before normalizing: an axis within 1e-154 of ±y has a
+        // cross product whose squares are subnormal (a norm off by 1e-10).
+        let m = cross.amax();
+        let about = (m > 0.0).then(|| Unit::try_new(cross / m, 0.0)).flatten();
+        let rotation = match about {
             Some(about) => Rotation3::from_axis_angle(&about, angle),
             None if angle > 1.0 => {
                 Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
