@@ -29,7 +29,8 @@
 //!   profile ([`Revolution::try_new`] checks the trait's contract);
 //! - [`Intersect`] for revolutions: the exact intersector (the angle
 //!   eliminated, one polynomial per profile span, every root isolated) for
-//!   profiles with Bézier spans, the same on a cubic approximation refined
+//!   profiles with polynomial or rational Bézier spans (exact spheres and
+//!   tori from NURBS arcs), the same on a cubic approximation refined
 //!   by Newton's method for other profiles, and [`NewtonIntersector`] for
 //!   any [`BoundedSurface`]; accuracy is a [`Tolerance`];
 //! - feature `testing`: proptest strategies and law checkers for your own
