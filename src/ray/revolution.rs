@@ -1388,6 +1388,7 @@ fn height_slab(span: &Span, q: &Query) -> (f64, f64) {
 /// Where `o + t d` is at distance `|x|` from the axis: the roots of
 /// `|o_xz + t d_xz|² = x²`, nearest first. A ray that only approaches the
 /// circle (negative discriminant within rounding) gets its closest approach.
+#[inline(always)]
 fn circle_times(q: &Query, x: f64) -> [Option<f64>; 2] {
     let a = q.d.x * q.d.x + q.d.z * q.d.z;
     if a == 0.0 {
