@@ -24,7 +24,12 @@ use nalgebra::{Point3, Unit, Vector3};
 ///   the limit from inside the domain: with the inward direction `d` toward
 ///   the domain's centre, `N(x + h·d) = h·N₁ + O(h²)` with
 ///   `N₁ = d_u(S_uu×S_v + S_u×S_uv) + d_v(S_uv×S_v + S_u×S_vv)` (second
-///   partials, analytic), so the limit is `N₁/|N₁|`. Where `N₁` vanishes
+///   partials, analytic), so the limit is `N₁/|N₁|`. On a collapsed edge
+///   of the domain that limit is the tangent plane only if every direction
+///   leaving the edge lies in it (the net's first differences off the edge
+///   are all perpendicular to it, within `10⁻⁷`, as on the teapot's lid,
+///   whose second row is level with its apex); otherwise the edge point is a
+///   cone point and the normal is `None`. Where `N₁` vanishes
 ///   too (two collapsed edges meeting at a corner), the normal `10⁻⁶` of
 ///   the domain inside along `d` is taken. `None` only where all of these
 ///   vanish: no tangent plane.

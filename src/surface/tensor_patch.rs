@@ -217,7 +217,10 @@ impl PatchTable {
             + (d[1][1].cross(&sv) + su.cross(&d[0][2])) * dir_v;
         let wide = (du.1 - du.0).max(dv.1 - dv.0);
         if n1.norm() * wide > negligible {
-            return Unit::try_new(n1, 0.0);
+            let n1 = Unit::try_new(n1, 0.0)?;
+            // At a collapsed edge the limit is a tangent plane only if every
+            // direction leaving the edge lies in it (else a cone point).
+            return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
         }
         // Both orders vanish (a corner where two edges collapse): the normal
         // a small step inside, if the cross product is clearly non-zero there.
@@ -229,6 +232,59 @@ impl PatchTable {
         } else {
             None
         }
+    }
+
+    /// At a point `(u, v)` on an edge of the domain where that edge is
+    /// collapsed (the partial along it vanishes), whether the first
+    /// differences of the control net leaving the edge (they span the
+    /// directions `∂S/∂n` along the whole edge, with positive factors) are
+    /// all perpendicular to `n` within `10⁻⁷` relative: the edge point then
+    /// has the tangent plane `⟂ n`; otherwise it is a cone point. `true`
+    /// off the edges and on edges that do not collapse.
+    fn edge_is_flat(
+        &self,
+        u: f64,
+        v: f64,
+        su: Vector3<f64>,
+        sv: Vector3<f64>,
+        n: &Unit<Vector3<f64>>,
+    ) -> bool {
+        let [du, dv] = self.domain();
+        let (p, q) = self.degrees;
+        let cols = q + 1;
+        let (nu, nv) = (self.u_breaks.len() - 1, self.v_breaks.len() - 1);
+        let point = |h: &Homogeneous<3>| h.wp / h.w;
+        let tiny = |x: Vector3<f64>, y: Vector3<f64>| x.norm() <= 1e-7 * y.norm();
+        let flat = |d: Vector3<f64>| n.dot(&d).abs() <= 1e-7 * d.norm();
+        // (patch selector, pairs of net indices (on edge, next inward)).
+        let mut ok = true;
+        if (u == du.0 || u == du.1) && tiny(sv, su) && p >= 1 {
+            let (a, i0, i1) = if u == du.0 {
+                (0, 0, 1)
+            } else {
+                (nu - 1, p, p - 1)
+            };
+            for b in 0..nv {
+                let net = &self.patches[a * nv + b].net;
+                for j in 0..cols {
+                    ok &= flat(point(&net[i1 * cols + j]) - point(&net[i0 * cols + j]));
+                }
+            }
+        }
+        if (v == dv.0 || v == dv.1) && tiny(su, sv) && q >= 1 {
+            let (b, j0, j1) = if v == dv.0 {
+                (0, 0, 1)
+            } else {
+                (nv - 1, q, q - 1)
+            };
+            for a in 0..nu {
+                let net = &self.patches[a * nv + b].net;
+                for i in 0..=p {
+                    ok &= flat(point(&net[i * cols + j1]) - point(&net[i * cols + j0]));
+                }
+            }
+        }
+        ok
     }
 
     /// The largest extent of the projected control points of the patches.
