@@ -348,10 +348,10 @@ impl PatchTable {
 
 /// Replaces the Bernstein coefficients `c` on `[0, 1]` by those of the same
 /// polynomial on `[a, b] ⊆ [0, 1]` (two de Casteljau subdivisions).
-fn restrict<T: Coefficient>(c: &mut Vec<T>, (a, b): (f64, f64)) {
+fn restrict<T: Coefficient>(c: &mut [T], (a, b): (f64, f64)) {
     let n = c.len();
-    let mut left = c.clone();
-    let mut right = c.clone();
+    let mut left = c.to_vec();
+    let mut right = c.to_vec();
     if b < 1.0 {
         bernstein::subdivide(c, b, &mut left, &mut right);
         c.copy_from_slice(&left);
