@@ -2,12 +2,18 @@
 //! independent evaluator (the curve types row by row), finite differences,
 //! bounds, collapsed-edge normals, the generic Newton intersector, bad input.
 
+mod common;
+
+use common::{CountingAllocator, allocations_in};
 use revolve::nalgebra::{Point3, Point4, Vector3};
 use revolve::surface::{BezierPatch, RationalBezierPatch};
 use revolve::{
     BSpline, BSplineSurface, BezierSurface, BoundedSurface, Curve, Error, Intersect,
     NewtonIntersector, NurbsSurface, Ray, Surface,
 };
+
+#[global_allocator]
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// A small deterministic generator (xorshift64*), uniform in `[0, 1)`.
 struct Rng(u64);
@@ -789,4 +795,21 @@ fn bad_input_gives_named_errors() {
     // The messages name the problem.
     let e = BezierSurface::new(vec![vec![p, p], vec![p]]).unwrap_err();
     assert!(e.to_string().contains("row 1"), "{e}");
+}
+
+#[test]
+fn bicubic_evaluation_does_not_allocate() {
+    let mut rng = Rng(59);
+    let bezier = BezierSurface::new(rng.grid(4, 4)).unwrap();
+    let knots = (clamped_knots(&mut rng, 3, 7), clamped_knots(&mut rng, 3, 6));
+    let bspline = BSplineSurface::new((3, 3), knots.clone(), rng.grid(7, 6)).unwrap();
+    let nurbs = NurbsSurface::new((3, 3), knots, rng.grid(7, 6), rng.weights(7, 6)).unwrap();
+    let surfaces: [&dyn Surface; 3] = [&bezier, &bspline, &nurbs];
+    for s in surfaces {
+        let (u, v) = (rng.next(), rng.next());
+        assert_eq!(allocations_in(|| s.eval(u, v)), 0);
+        assert_eq!(allocations_in(|| s.partials(u, v)), 0);
+        assert_eq!(allocations_in(|| s.normal(u, v)), 0);
+    }
+    assert_eq!(allocations_in(|| bezier.second_partials(0.3, 0.7)), 0);
 }

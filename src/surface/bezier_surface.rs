@@ -88,16 +88,16 @@ impl BezierSurface {
             .flatten()
             .map(|p| Homogeneous::new(p, 1.0))
             .collect();
-        let table = PatchTable {
-            degrees: (rows - 1, cols - 1),
-            u_breaks: vec![0.0, 1.0],
-            v_breaks: vec![0.0, 1.0],
-            patches: vec![Patch {
+        let table = PatchTable::new(
+            (rows - 1, cols - 1),
+            vec![0.0, 1.0],
+            vec![0.0, 1.0],
+            vec![Patch {
                 u: (0.0, 1.0),
                 v: (0.0, 1.0),
                 net,
             }],
-        };
+        );
         BezierSurface { points, table }
     }
 

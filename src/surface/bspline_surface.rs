@@ -451,10 +451,5 @@ fn patch_table(
         b.push(s[s.len() - 1].1.1);
         b
     };
-    PatchTable {
-        degrees,
-        u_breaks: breaks(&u_spans),
-        v_breaks: breaks(&v_spans),
-        patches,
-    }
+    PatchTable::new(degrees, breaks(&u_spans), breaks(&v_spans), patches)
 }

@@ -40,6 +40,9 @@ pub(crate) struct PatchTable {
     /// Patch `(a, b)` (the `a`-th u-span, `b`-th v-span) at
     /// `a·(v_breaks.len() − 1) + b`.
     pub(crate) patches: Vec<Patch>,
+    /// The largest extent of the box of the projected control points
+    /// (the scale of the normal's degeneracy test), computed once.
+    extent: f64,
 }
 
 /// Value and derivatives up to order 2 (`d[a][b] = ∂ᵃ⁺ᵇ/∂uᵃ∂vᵇ`, `a + b ≤ 2`).
@@ -141,6 +144,28 @@ fn locate(breaks: &[f64], x: f64) -> usize {
 }
 
 impl PatchTable {
+    /// The table of `patches` on the breakpoint grid (see the fields).
+    pub(crate) fn new(
+        degrees: (usize, usize),
+        u_breaks: Vec<f64>,
+        v_breaks: Vec<f64>,
+        patches: Vec<Patch>,
+    ) -> Self {
+        let mut b = Aabb::EMPTY;
+        for p in &patches {
+            for h in &p.net {
+                b = b.include(&Point3::from(h.wp / h.w));
+            }
+        }
+        PatchTable {
+            degrees,
+            u_breaks,
+            v_breaks,
+            patches,
+            extent: b.extent().amax(),
+        }
+    }
+
     /// The parameter rectangle.
     pub(crate) fn domain(&self) -> [(f64, f64); 2] {
         [
@@ -202,7 +227,7 @@ impl PatchTable {
         // The typical size of a first derivative: net extent over the
         // parameter widths, times the degree.
         let [du, dv] = self.domain();
-        let extent = self.net_extent().max(f64::MIN_POSITIVE);
+        let extent = self.extent.max(f64::MIN_POSITIVE);
         let typical = extent * (self.degrees.0.max(self.degrees.1).max(1) as f64)
             / (du.1 - du.0).min(dv.1 - dv.0);
         let negligible = (1e-7 * typical) * (1e-7 * typical);
@@ -285,17 +310,6 @@ impl PatchTable {
             }
         }
         ok
-    }
-
-    /// The largest extent of the projected control points of the patches.
-    fn net_extent(&self) -> f64 {
-        let mut b = Aabb::EMPTY;
-        for p in &self.patches {
-            for h in &p.net {
-                b = b.include(&Point3::from(h.wp / h.w));
-            }
-        }
-        b.extent().amax()
     }
 
     /// A box containing `S([u₀, u₁] × [v₀, v₁])`: the union over the patches
