@@ -813,3 +813,26 @@ fn bicubic_evaluation_does_not_allocate() {
     }
     assert_eq!(allocations_in(|| bezier.second_partials(0.3, 0.7)), 0);
 }
+
+#[test]
+fn corner_where_two_edges_collapse_has_the_limit_normal() {
+    // A planar biquadratic "triangle": the edges u = 0 and v = 0 both
+    // collapse to the corner (0, 0, 0), so S_u = S_v = 0 there and the
+    // first-order limit vanishes too; the plane's normal is still the limit.
+    let o = Point3::origin();
+    let grid = vec![
+        vec![o, o, o],
+        vec![o, Point3::new(1.0, 1.0, 0.0), Point3::new(0.5, 2.0, 0.0)],
+        vec![o, Point3::new(2.0, 0.5, 0.0), Point3::new(2.0, 2.0, 0.0)],
+    ];
+    let s = BezierSurface::new(grid).unwrap();
+    let (su, sv) = s.partials(0.0, 0.0);
+    assert!(su.norm() == 0.0 && sv.norm() == 0.0);
+    let n = s.normal(0.0, 0.0).unwrap();
+    let inside = s.normal(0.3, 0.4).unwrap();
+    assert!(
+        (n.into_inner() - inside.into_inner()).norm() < 1e-12,
+        "{n:?} {inside:?}"
+    );
+    assert!((n.z.abs() - 1.0).abs() < 1e-12);
+}

@@ -30,9 +30,11 @@ use nalgebra::{Point3, Unit, Vector3};
 ///   are all perpendicular to it, within `10⁻⁷`, as on the teapot's lid,
 ///   whose second row is level with its apex); otherwise the edge point is a
 ///   cone point and the normal is `None`. Where `N₁` vanishes
-///   too (two collapsed edges meeting at a corner), the normal `10⁻⁶` of
-///   the domain inside along `d` is taken. `None` only where all of these
-///   vanish: no tangent plane.
+///   too (two collapsed edges meeting at a corner), the normals at steps
+///   `h = 10⁻³, 10⁻⁴, …, 10⁻⁸` of the domain inside along `d` are computed
+///   while the partials' cross product is resolved (sine of their angle
+///   `≥ 10⁻⁶`); if successive ones converge (within `10⁻³`) the last is the
+///   normal. `None` where none of these gives a normal: no tangent plane.
 /// - [`bound_patch`](BoundedSurface::bound_patch) is the box of the
 ///   sub-patch's control net (de Casteljau subdivision; convex hull
 ///   property), padded for rounding.

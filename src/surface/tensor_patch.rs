@@ -247,16 +247,28 @@ impl PatchTable {
             // direction leaving the edge lies in it (else a cone point).
             return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
         }
-        // Both orders vanish (a corner where two edges collapse): the normal
-        // a small step inside, if the cross product is clearly non-zero there.
-        let h = 1e-6;
-        let (su, sv) = self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
-        let n = su.cross(&sv);
-        if n.norm() > negligible * 1e-4 {
-            Unit::try_new(n, 0.0)
-        } else {
-            None
+        // Both orders vanish (a corner where two edges collapse): the
+        // normals at steps h = 10⁻³ … 10⁻⁸ (of the domain) inside along the
+        // direction, where the cross product is clearly resolved (sine of
+        // the angle between the partials ≥ 10⁻⁶); the last of them if they
+        // converge (successive ones within 10⁻³), else no tangent plane.
+        let mut last: Option<Unit<Vector3<f64>>> = None;
+        let mut converged = false;
+        for k in 3..=8 {
+            let h = 10f64.powi(-k);
+            let (su, sv) =
+                self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
+            let n = su.cross(&sv);
+            if !(n.norm() > 1e-6 * su.norm() * sv.norm()) {
+                break;
+            }
+            let n = Unit::new_normalize(n);
+            if let Some(previous) = last {
+                converged = (n.into_inner() - previous.into_inner()).norm() < 1e-3;
+            }
+            last = Some(n);
         }
+        if converged { last } else { None }
     }
 
     /// At a point `(u, v)` on an edge of the domain where that edge is
