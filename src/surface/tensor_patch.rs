@@ -259,7 +259,8 @@ impl PatchTable {
             let (su, sv) =
                 self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
             let n = su.cross(&sv);
-            if !(n.norm() > 1e-6 * su.norm() * sv.norm()) {
+            let resolved = n.norm() > 1e-6 * su.norm() * sv.norm();
+            if !resolved {
                 break;
             }
             let n = Unit::new_normalize(n);
