@@ -836,3 +836,68 @@ fn corner_where_two_edges_collapse_has_the_limit_normal() {
     );
     assert!((n.z.abs() - 1.0).abs() < 1e-12);
 }
+
+/// Patches 21 (the lid's knob, row 0 at the apex) and 29 (the bottom; one-based) of
+/// Newell's teapot, as in the classic data (z up).
+fn teapot_collapsed_patches() -> [BezierSurface; 2] {
+    let p = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    let apex = p(0.0, 0.0, 3.15);
+    let knob = BezierSurface::new(vec![
+        vec![apex; 4],
+        vec![
+            p(0.8, 0.0, 3.15),
+            p(0.8, -0.45, 3.15),
+            p(0.45, -0.8, 3.15),
+            p(0.0, -0.8, 3.15),
+        ],
+        vec![p(0.0, 0.0, 2.85); 4],
+        vec![
+            p(0.2, 0.0, 2.7),
+            p(0.2, -0.112, 2.7),
+            p(0.112, -0.2, 2.7),
+            p(0.0, -0.2, 2.7),
+        ],
+    ])
+    .unwrap();
+    let bottom = BezierSurface::new(vec![
+        vec![p(0.0, 0.0, 0.0); 4],
+        vec![
+            p(1.425, 0.0, 0.0),
+            p(1.425, 0.798, 0.0),
+            p(0.798, 1.425, 0.0),
+            p(0.0, 1.425, 0.0),
+        ],
+        vec![
+            p(1.5, 0.0, 0.075),
+            p(1.5, 0.84, 0.075),
+            p(0.84, 1.5, 0.075),
+            p(0.0, 1.5, 0.075),
+        ],
+        vec![
+            p(1.5, 0.0, 0.15),
+            p(1.5, 0.84, 0.15),
+            p(0.84, 1.5, 0.15),
+            p(0.0, 1.5, 0.15),
+        ],
+    ])
+    .unwrap();
+    [knob, bottom]
+}
+
+#[test]
+fn teapot_lid_and_bottom_have_normals_at_their_collapsed_edges() {
+    for s in teapot_collapsed_patches() {
+        let inside = s.normal(1e-3, 0.5).unwrap();
+        for k in 0..=8 {
+            let v = k as f64 / 8.0;
+            assert!(s.partials(0.0, v).1.norm() == 0.0);
+            let n = s.normal(0.0, v).expect("a tangent plane at the apex");
+            // The apex's tangent plane is horizontal, on the side of the
+            // normals nearby.
+            assert!((n.z.abs() - 1.0).abs() < 1e-12, "{n:?}");
+            assert!(n.z * inside.z > 0.0);
+            let near = s.normal(1e-6, v).unwrap();
+            assert!((near.into_inner() - n.into_inner()).norm() < 1e-5);
+        }
+    }
+}
