@@ -901,3 +901,27 @@ fn teapot_lid_and_bottom_have_normals_at_their_collapsed_edges() {
         }
     }
 }
+
+#[test]
+fn knot_rectangles_are_half_open_and_the_end_belongs_to_the_last() {
+    // Degree 1 in u with a knot of full multiplicity at 0.5: the surface
+    // jumps there; the value at 0.5 is the limit from above (rows 2, 3).
+    let row = |x: f64, z: f64| vec![Point3::new(x, 0.0, z), Point3::new(x, 1.0, z)];
+    let s = BSplineSurface::new(
+        (1, 1),
+        (vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]),
+        vec![row(0.0, 0.0), row(1.0, 0.0), row(1.0, 5.0), row(2.0, 5.0)],
+    )
+    .unwrap();
+    for v in [0.0, 0.3, 1.0] {
+        assert!(close(s.eval(0.5, v), Point3::new(1.0, v, 5.0), 1e-15));
+        assert!(close(
+            s.eval(0.5 - 1e-12, v),
+            Point3::new(1.0, v, 0.0),
+            1e-11
+        ));
+        assert!(close(s.eval(1.0, v), Point3::new(2.0, v, 5.0), 1e-15));
+        assert!(close(s.eval(0.0, v), Point3::new(0.0, v, 0.0), 1e-15));
+    }
+    assert_eq!(s.to_bezier_patches().len(), 2);
+}
