@@ -57,6 +57,23 @@ fn bernstein_jet<T: Coefficient>(c: &[T], t: f64, order: usize, out: &mut [T; 3]
     let n = c.len() - 1;
     let zero = c[0] * 0.0;
     *out = [zero; 3];
+    // Orders 0 and 1: the kernels unrolled for degree ≤ 16.
+    match order {
+        0 => {
+            if let Some(x) = bernstein::eval(c, t) {
+                out[0] = x;
+                return;
+            }
+        }
+        1 => {
+            if let Some((x, dx)) = bernstein::eval_with_derivative(c, t) {
+                out[0] = x;
+                out[1] = dx;
+                return;
+            }
+        }
+        _ => {}
+    }
     let k = order.min(n);
     with_scratch(c.len(), c[0], |s| {
         s.copy_from_slice(c);
@@ -95,7 +112,7 @@ pub(crate) fn tensor_jet<T: Coefficient>(
     let rows = net.len() / cols;
     let zero = net[0] * 0.0;
     let mut jet = [[zero; 3]; 3];
-    with_scratch(3 * rows, zero, |buf| {
+    with_scratch((order + 1) * rows, zero, |buf| {
         let mut row_jet = [zero; 3];
         for i in 0..rows {
             bernstein_jet(&net[i * cols..(i + 1) * cols], t, order, &mut row_jet);
@@ -221,8 +238,8 @@ impl PatchTable {
     /// rule).
     pub(crate) fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
         let (u, v) = self.clamp(u, v);
-        let d = self.jet(u, v, 2);
-        let (su, sv) = (d[1][0], d[0][1]);
+        let first = self.jet(u, v, 1);
+        let (su, sv) = (first[1][0], first[0][1]);
         let n = su.cross(&sv);
         // The typical size of a first derivative: net extent over the
         // parameter widths, times the degree.
@@ -234,6 +251,7 @@ impl PatchTable {
         if n.norm() > negligible {
             return Unit::try_new(n, 0.0);
         }
+        let d = self.jet(u, v, 2);
         // N(u + h·du, v + h·dv) = N + h·N₁ + O(h²) toward the domain's
         // centre, N₁ = du(S_uu×S_v + S_u×S_uv) + dv(S_uv×S_v + S_u×S_vv).
         let dir_u = (0.5 * (du.0 + du.1) - u) / (du.1 - du.0);
