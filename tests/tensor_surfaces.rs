@@ -925,3 +925,75 @@ fn knot_rectangles_are_half_open_and_the_end_belongs_to_the_last() {
     }
     assert_eq!(s.to_bezier_patches().len(), 2);
 }
+
+#[test]
+fn random_input_never_panics_and_valid_surfaces_evaluate_finitely() {
+    let mut rng = Rng(61);
+    let specials = [f64::NAN, f64::INFINITY, -1.0, 0.0, 1e-300, 1e300, 0.5];
+    let mut built = 0;
+    for _ in 0..3000 {
+        let (p, q) = ((rng.next() * 4.0) as usize, (rng.next() * 4.0) as usize);
+        let (rows, cols) = (
+            1 + (rng.next() * 6.0) as usize,
+            1 + (rng.next() * 6.0) as usize,
+        );
+        let mut grid = rng.grid(rows, cols);
+        let mut weights = rng.weights(rows, cols);
+        let mut knots = (
+            (0..rows + p + 1).map(|_| rng.next()).collect::<Vec<f64>>(),
+            (0..cols + q + 1).map(|_| rng.next()).collect::<Vec<f64>>(),
+        );
+        if rng.next() < 0.8 {
+            knots.0.sort_by(f64::total_cmp);
+            knots.1.sort_by(f64::total_cmp);
+        }
+        if rng.next() < 0.2 {
+            let s = specials[(rng.next() * 7.0) as usize];
+            match (rng.next() * 4.0) as usize {
+                0 => grid[0][0].x = s,
+                1 => weights[rows - 1][cols - 1] = s,
+                2 => knots.0[0] = s,
+                _ => {
+                    grid.push(vec![Point3::origin()]);
+                }
+            }
+        }
+        let n = NurbsSurface::new((p, q), knots.clone(), grid.clone(), weights);
+        let b = BSplineSurface::new((p, q), knots, grid.clone());
+        let z = BezierSurface::new(grid);
+        let mut check = |s: &dyn BoundedSurface| {
+            built += 1;
+            let params = [
+                rng.next(),
+                rng.next(),
+                f64::NAN,
+                -1e300,
+                1e300,
+                f64::INFINITY,
+            ];
+            for &u in &params {
+                for &v in &params[..3] {
+                    let x = s.eval(u, v);
+                    assert!(x.coords.iter().all(|c| c.is_finite()), "{x:?}");
+                    let (su, sv) = s.partials(u, v);
+                    assert!(su.iter().chain(sv.iter()).all(|c| c.is_finite()));
+                    if let Some(nrm) = s.normal(u, v) {
+                        assert!((nrm.norm() - 1.0).abs() < 1e-12);
+                    }
+                    let [du, dv] = s.domain();
+                    assert!(s.bound_patch(du, dv).contains(&x));
+                }
+            }
+        };
+        if let Ok(s) = n {
+            check(&s);
+        }
+        if let Ok(s) = b {
+            check(&s);
+        }
+        if let Ok(s) = z {
+            check(&s);
+        }
+    }
+    assert!(built > 1000, "{built}");
+}
