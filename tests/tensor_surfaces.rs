@@ -886,7 +886,19 @@ fn teapot_collapsed_patches() -> [BezierSurface; 2] {
 
 #[test]
 fn teapot_lid_and_bottom_have_normals_at_their_collapsed_edges() {
-    for s in teapot_collapsed_patches() {
+    let scaled = |s: &BezierSurface, k: f64| {
+        let points = s
+            .points()
+            .iter()
+            .map(|r| r.iter().map(|p| Point3::from(p.coords * k)).collect())
+            .collect();
+        BezierSurface::new(points).unwrap()
+    };
+    let patches = teapot_collapsed_patches();
+    let all = patches
+        .iter()
+        .flat_map(|s| [s.clone(), scaled(s, 1e-6), scaled(s, 1e6)]);
+    for s in all {
         let inside = s.normal(1e-3, 0.5).unwrap();
         for k in 0..=8 {
             let v = k as f64 / 8.0;
@@ -996,4 +1008,62 @@ fn random_input_never_panics_and_valid_surfaces_evaluate_finitely() {
         }
     }
     assert!(built > 1000, "{built}");
+}
+
+#[test]
+fn newton_intersector_finds_sphere_octant_hits() {
+    // Rays from outside toward the octant: the nearest hit is the sphere's
+    // (closed form) when that point lies in the octant.
+    let r = 2.0;
+    let s = sphere_octant(r);
+    let newton = NewtonIntersector::new(&s, 8);
+    let mut rng = Rng(67);
+    let mut hits = 0;
+    for _ in 0..200 {
+        let o = Point3::new(
+            rng.range(-1.0, 5.0),
+            rng.range(-1.0, 5.0),
+            rng.range(-1.0, 5.0),
+        );
+        if o.coords.norm() <= r * 1.01 {
+            continue;
+        }
+        let target = Point3::new(rng.range(0.0, r), rng.range(0.0, r), rng.range(0.0, r));
+        let d = target - o;
+        let ray = Ray::new(o, d);
+        // |o + t d|² = r²: the entry root.
+        let (a, b, c) = (
+            d.dot(&d),
+            2.0 * o.coords.dot(&d),
+            o.coords.dot(&o.coords) - r * r,
+        );
+        let disc = b * b - 4.0 * a * c;
+        let entry = (disc >= 0.0).then(|| (-b - disc.sqrt()) / (2.0 * a));
+        let in_octant = |t: f64| {
+            let p = ray.at(t);
+            p.x > 1e-6 && p.y > 1e-6 && p.z > 1e-6
+        };
+        let exit = (disc >= 0.0).then(|| (-b + disc.sqrt()) / (2.0 * a));
+        let expected = [entry, exit]
+            .into_iter()
+            .flatten()
+            .find(|&t| t > 0.0 && in_octant(t));
+        let grazing = [entry, exit].into_iter().flatten().any(|t| {
+            let p = ray.at(t);
+            p.x.abs().min(p.y.abs()).min(p.z.abs()) < 1e-6
+        });
+        if grazing || disc.abs() < 1e-9 {
+            continue;
+        }
+        match (expected, newton.intersect(&ray, 0.0, f64::INFINITY)) {
+            (None, None) => {}
+            (Some(t), Some(h)) => {
+                hits += 1;
+                assert!((h.t - t).abs() < 1e-9 * (1.0 + t), "{t} {}", h.t);
+                assert!((h.point.coords.norm() - r).abs() < 1e-9);
+            }
+            (e, h) => panic!("expected {e:?}, got {h:?}"),
+        }
+    }
+    assert!(hits > 40, "{hits}");
 }
