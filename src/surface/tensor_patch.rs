@@ -312,7 +312,6 @@ impl PatchTable {
         let point = |h: &Homogeneous<3>| h.wp / h.w;
         let tiny = |x: Vector3<f64>, y: Vector3<f64>| x.norm() <= 1e-7 * y.norm();
         let flat = |d: Vector3<f64>| n.dot(&d).abs() <= 1e-7 * d.norm();
-        // (patch selector, pairs of net indices (on edge, next inward)).
         let mut ok = true;
         if (u == du.0 || u == du.1) && tiny(sv, su) && p >= 1 {
             let (a, i0, i1) = if u == du.0 {
