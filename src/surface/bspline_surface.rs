@@ -143,6 +143,24 @@ impl BSplineSurface {
     /// [`Error::ParameterOutOfDomain`] (NaN or outside the `u` domain),
     /// [`Error::KnotMultiplicity`] (beyond `p + 1`), and the checks of
     /// [`new`](Self::new) on the result.
+    ///
+    /// ```
+    /// use revolve::{BSplineSurface, Surface};
+    /// use revolve::nalgebra::Point3;
+    ///
+    /// let grid: Vec<Vec<Point3<f64>>> = (0..3)
+    ///     .map(|i| (0..2).map(|j| Point3::new(i as f64, j as f64, (i * i) as f64)).collect())
+    ///     .collect();
+    /// let k = (vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]);
+    /// let s = BSplineSurface::new((2, 1), k, grid)?;
+    /// let refined = s.insert_knot_u(0.25, 2)?;
+    /// assert_eq!(refined.points().len(), 5);
+    /// assert_eq!(refined.to_bezier_patches().len(), 2);
+    /// for (u, v) in [(0.1, 0.2), (0.25, 0.5), (0.9, 1.0)] {
+    ///     assert!((refined.eval(u, v) - s.eval(u, v)).norm() < 1e-15);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
     pub fn insert_knot_u(&self, t: f64, times: usize) -> Result<Self, Error> {
         Ok(BSplineSurface {
             core: self.core.insert_knot(0, t, times)?,
