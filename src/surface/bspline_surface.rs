@@ -3,7 +3,8 @@
 
 use super::BezierSurface;
 use super::tensor_patch::{
-    Patch, PatchTable, flatten_points, flatten_weights, rows_and_columns, weight_scale,
+    Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
+    weight_scale,
 };
 use super::{BoundedSurface, Surface};
 use crate::bernstein::{Coefficient, lerp};
@@ -284,6 +285,9 @@ impl TensorSpline {
             }
         }
         let table = patch_table(degrees, &knots, &homogeneous, cols);
+        if rational {
+            check_rational_partials(&table)?;
+        }
         Ok(TensorSpline {
             degrees,
             knots,

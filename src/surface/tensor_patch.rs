@@ -482,3 +482,43 @@ pub(crate) fn rows_and_columns<T: Copy>(flat: &[T], cols: usize) -> (Vec<Vec<T>>
         .collect();
     (rows, columns)
 }
+
+/// Checks that the first partials of every rational patch stay within
+/// [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE), as the rational curves check
+/// their pieces: along each row (in `v`) and column (in `u`) of a patch net,
+/// `|S′| ≤ (max|A′| + max|w′|·max|P|)/min w` with the hodographs bounded by
+/// the nets' differences times `degree / width` (convex hull property).
+///
+/// # Errors
+/// [`Error::DerivativeOverflow`] (order 1).
+pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
+    let (p, q) = table.degrees;
+    let cols = q + 1;
+    for patch in &table.patches {
+        let net = &patch.net;
+        let w_min = net.iter().fold(f64::INFINITY, |m, h| m.min(h.w));
+        let p_max = net.iter().fold(0.0_f64, |m, h| m.max(h.wp.amax() / h.w));
+        // (degree / width, index step to the neighbour, along u?).
+        let along = [
+            ((p as f64) / (patch.u.1 - patch.u.0), cols, true),
+            ((q as f64) / (patch.v.1 - patch.v.0), 1, false),
+        ];
+        for (factor, step, in_u) in along {
+            let (mut a1, mut w1) = (0.0_f64, 0.0_f64);
+            for k in 0..net.len() {
+                let neighbour = k + step;
+                let paired = in_u || (k % cols) + 1 < cols;
+                if neighbour < net.len() && paired {
+                    a1 = a1.max((net[neighbour].wp - net[k].wp).amax());
+                    w1 = w1.max((net[neighbour].w - net[k].w).abs());
+                }
+            }
+            let bound = (a1 * factor + w1 * factor * p_max) / w_min;
+            let within = bound <= crate::MAX_DERIVATIVE;
+            if !within {
+                return Err(Error::DerivativeOverflow { order: 1 });
+            }
+        }
+    }
+    Ok(())
+}
