@@ -1067,3 +1067,23 @@ fn newton_intersector_finds_sphere_octant_hits() {
     }
     assert!(hits > 40, "{hits}");
 }
+
+#[test]
+fn rational_partials_beyond_the_limit_are_refused() {
+    // A knot span of 1e-195 and coordinates ±1e100: the homogeneous
+    // derivatives (~1e295) are in range, the polynomial surface is fine, but
+    // a weight of 2e-8 divides them beyond MAX_DERIVATIVE.
+    let points = vec![
+        vec![Point3::new(-1e100, 0.0, 0.0), Point3::new(-1e100, 1.0, 0.0)],
+        vec![Point3::new(1e100, 0.0, 0.0), Point3::new(1e100, 1.0, 0.0)],
+    ];
+    let knots = (vec![0.0, 0.0, 1e-195, 1e-195], vec![0.0, 0.0, 1.0, 1.0]);
+    let b = BSplineSurface::new((1, 1), knots.clone(), points.clone()).unwrap();
+    let (su, _) = b.partials(5e-196, 0.5);
+    assert!(su.x.is_finite() && su.x <= revolve::MAX_DERIVATIVE);
+    let n = NurbsSurface::new((1, 1), knots, points, vec![vec![2e-8; 2], vec![1.0; 2]]);
+    assert!(
+        matches!(n, Err(Error::DerivativeOverflow { order: 1 })),
+        "{n:?}"
+    );
+}
