@@ -275,6 +275,19 @@ pub enum Error {
     /// [`Curve::rational_bezier_spans`](crate::Curve::rational_bezier_spans)
     /// is `Some`).
     NotPiecewiseRational,
+    // -- Added for issue 18 by h-surf: tensor-product surfaces. --
+    /// A grid of control points (or of weights) of a tensor-product surface
+    /// has rows of different lengths: row `row` has `found` entries where
+    /// the first row has `expected` (for weights: where the points' rows
+    /// have `expected`).
+    RaggedGrid {
+        /// Index of the first row of the wrong length.
+        row: usize,
+        /// The length of the first row (of the points' rows, for weights).
+        expected: usize,
+        /// The length of that row.
+        found: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -486,6 +499,14 @@ impl fmt::Display for Error {
                 f,
                 "this needs a curve with rational Bézier spans (Curve::rational_bezier_spans), \
                  as Bezier, BSpline and RationalBezier are"
+            ),
+            Error::RaggedGrid {
+                row,
+                expected,
+                found,
+            } => write!(
+                f,
+                "ragged grid: row {row} has {found} entries, expected {expected} like the first row"
             ),
         }
     }

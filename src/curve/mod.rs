@@ -34,6 +34,7 @@ mod rational_bezier;
 pub use arc_length::ArcLength;
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
+pub(crate) use bspline::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use elevate::MAX_ELEVATED_DEGREE;
 pub(crate) use elevate::elevate_spline;
 pub use flatten::Flattening;

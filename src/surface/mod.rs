@@ -1,10 +1,18 @@
-//! Parametric surfaces: the [`Surface`] trait and surfaces of revolution.
+//! Parametric surfaces: the [`Surface`] trait, surfaces of revolution and
+//! tensor-product (Bézier, B-spline, NURBS) surfaces.
 
+mod bezier_surface;
+mod bspline_surface;
 mod mesh;
+mod nurbs_surface;
 mod profile_approximation;
 mod revolution;
+mod tensor_patch;
 
+pub use bezier_surface::BezierSurface;
+pub use bspline_surface::{BSplineSurface, BezierPatch};
 pub use mesh::Mesh;
+pub use nurbs_surface::{NurbsSurface, RationalBezierPatch};
 pub use revolution::Revolution;
 
 use crate::Aabb;

@@ -1,0 +1,193 @@
+//! Tensor-product rational B-spline (NURBS) surfaces.
+
+use super::bspline_surface::TensorSpline;
+use super::{BSplineSurface, BoundedSurface, Surface};
+use crate::{Aabb, Error};
+use nalgebra::{Point3, Unit, Vector3};
+
+/// A NURBS surface
+/// `S(u, v) = Σᵢⱼ wᵢⱼPᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v) / Σᵢⱼ wᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v)` with
+/// positive weights: the knot and grid rules of [`BSplineSurface`], one
+/// weight per control point.
+///
+/// The surface is a polynomial spline one dimension up in homogeneous
+/// coordinates `(wP, w)`: knot refinement into Bézier patches, de Casteljau
+/// and subdivision run on those, and the division comes last; the partials
+/// follow by the quotient rule `S_u = (A_u − w_u S)/w` (Piegl & Tiller,
+/// *The NURBS Book*, §4.5). Equal weights give the [`BSplineSurface`] of the
+/// same grid.
+///
+/// # Edge rules
+/// As [`BSplineSurface`]: half-open knot rectangles, clamping into the
+/// domain (NaN to its start), the limit normal at collapsed edges (see
+/// [`BezierSurface`](crate::BezierSurface)), and bounds from the projected
+/// control net of the sub-patch (the convex hull property holds for positive
+/// weights).
+///
+/// ```
+/// use revolve::{NurbsSurface, Surface};
+/// use revolve::nalgebra::Point3;
+///
+/// // A quarter cylinder of radius 1: a quarter circle in u, a line in v.
+/// let h = std::f64::consts::FRAC_1_SQRT_2;
+/// let arc = [(1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+/// let points = arc.iter()
+///     .map(|&(x, y)| vec![Point3::new(x, y, 0.0), Point3::new(x, y, 2.0)])
+///     .collect();
+/// let s = NurbsSurface::new(
+///     (2, 1),
+///     (vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]),
+///     points,
+///     vec![vec![1.0, 1.0], vec![h, h], vec![1.0, 1.0]],
+/// )?;
+/// let p = s.eval(0.3, 0.6);
+/// assert!((p.x.hypot(p.y) - 1.0).abs() < 1e-15);
+/// assert!((p.z - 1.2).abs() < 1e-15);
+/// # Ok::<(), revolve::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct NurbsSurface {
+    core: TensorSpline,
+}
+
+/// One rational piece of a [`NurbsSurface`]: on the knot rectangle `u × v`
+/// the surface equals the rational Bézier patch of `points` and `weights`
+/// (degrees `(rows − 1, cols − 1)`) at
+/// `((u − u₀)/(u₁ − u₀), (v − v₀)/(v₁ − v₀))`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RationalBezierPatch {
+    /// The knot interval `(u₀, u₁)` in `u`, `u₀ < u₁`.
+    pub u: (f64, f64),
+    /// The knot interval `(v₀, v₁)` in `v`, `v₀ < v₁`.
+    pub v: (f64, f64),
+    /// The control grid, `points[i][j]` with `i` along `u`.
+    pub points: Vec<Vec<Point3<f64>>>,
+    /// The weights, positive, one per point.
+    pub weights: Vec<Vec<f64>>,
+}
+
+impl NurbsSurface {
+    /// A NURBS surface of degrees `(p, q)`, knot vectors `(U, V)`, control
+    /// grid `points[i][j]` and weights `weights[i][j]`.
+    ///
+    /// # Errors
+    /// The checks of [`BSplineSurface::new`] for the points and knots; then
+    /// [`Error::WeightCount`] (not one row of weights per row of points),
+    /// [`Error::RaggedGrid`] (a row of weights of another length than the
+    /// points' rows), [`Error::InvalidWeight`] (zero, negative, NaN or
+    /// infinite; flat index `i·cols + j`),
+    /// [`Error::WeightRatioTooLarge`]; [`Error::DerivativeOverflow`] as for
+    /// the B-spline, in homogeneous coordinates.
+    pub fn new(
+        degrees: (usize, usize),
+        knots: (Vec<f64>, Vec<f64>),
+        points: Vec<Vec<Point3<f64>>>,
+        weights: Vec<Vec<f64>>,
+    ) -> Result<Self, Error> {
+        Ok(NurbsSurface {
+            core: TensorSpline::new(degrees, knots, points, Some(weights))?,
+        })
+    }
+
+    /// The degrees `(p, q)`.
+    pub fn degrees(&self) -> (usize, usize) {
+        self.core.degrees
+    }
+
+    /// The knot vectors `(U, V)`.
+    pub fn knots(&self) -> (&[f64], &[f64]) {
+        (&self.core.knots.0, &self.core.knots.1)
+    }
+
+    /// The control grid, `points[i][j]` with `i` along `u`.
+    pub fn points(&self) -> &[Vec<Point3<f64>>] {
+        &self.core.points
+    }
+
+    /// The weights, as given (all ones for a converted [`BSplineSurface`]).
+    pub fn weights(&self) -> &[Vec<f64>] {
+        &self.core.weights
+    }
+
+    /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
+    /// (clamped into the domain), by the quotient rule.
+    pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        let d = self.core.table.jet(u, v, 2);
+        (d[2][0], d[1][1], d[0][2])
+    }
+
+    /// The rational Bézier patches, one per non-empty knot rectangle of the
+    /// domain, `u`-span major.
+    pub fn to_bezier_patches(&self) -> Vec<RationalBezierPatch> {
+        self.core
+            .table
+            .patches
+            .iter()
+            .map(|patch| {
+                let (points, weights) = self.core.patch_grid(patch);
+                RationalBezierPatch {
+                    u: patch.u,
+                    v: patch.v,
+                    points,
+                    weights,
+                }
+            })
+            .collect()
+    }
+
+    /// The same surface with the knot `t` inserted `times` times into `U`
+    /// (Boehm's algorithm on every column, in homogeneous coordinates).
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::insert_knot_u`].
+    pub fn insert_knot_u(&self, t: f64, times: usize) -> Result<Self, Error> {
+        Ok(NurbsSurface {
+            core: self.core.insert_knot(0, t, times)?,
+        })
+    }
+
+    /// The same surface with the knot `t` inserted `times` times into `V`.
+    ///
+    /// # Errors
+    /// As [`BSplineSurface::insert_knot_v`].
+    pub fn insert_knot_v(&self, t: f64, times: usize) -> Result<Self, Error> {
+        Ok(NurbsSurface {
+            core: self.core.insert_knot(1, t, times)?,
+        })
+    }
+}
+
+impl From<BSplineSurface> for NurbsSurface {
+    /// The same surface with unit weights.
+    fn from(s: BSplineSurface) -> Self {
+        // Unit weights change no homogeneous value: the polynomial core is
+        // already the rational surface (its weights read as ones).
+        NurbsSurface {
+            core: s.core().clone(),
+        }
+    }
+}
+
+impl Surface for NurbsSurface {
+    fn domain(&self) -> [(f64, f64); 2] {
+        self.core.table.domain()
+    }
+
+    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        self.core.table.eval(u, v)
+    }
+
+    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        self.core.table.partials(u, v)
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        self.core.table.normal(u, v)
+    }
+}
+
+impl BoundedSurface for NurbsSurface {
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        self.core.table.bound(u, v)
+    }
+}
