@@ -35,8 +35,8 @@
 //!   any [`BoundedSurface`]; accuracy is a [`Tolerance`];
 //! - feature `testing`: proptest strategies and law checkers for your own
 //!   curves and surfaces;
-//! - feature `serde`: `Serialize` and `Deserialize` for the curves,
-//!   [`Revolution`], [`Ray`], [`Tolerance`] and [`Aabb`], written as their
+//! - feature `serde`: `Serialize` and `Deserialize` for the curves, the
+//!   surfaces, [`Ray`], [`Tolerance`] and [`Aabb`], written as their
 //!   defining data (a revolution's intersector tables are rebuilt when it is
 //!   read) and read back through the public constructors, so that bad data
 //!   is an error with the crate's [`Error`] message and a deserialized value

@@ -1,5 +1,5 @@
 //! `Serialize` and `Deserialize` (feature `serde`) for the curves, the
-//! surface of revolution, rays, tolerances and boxes.
+//! surfaces, rays, tolerances and boxes.
 //!
 //! Each type is written as its defining data, a struct of named fields:
 //!
@@ -10,6 +10,9 @@
 //! | [`RationalBezier<D>`] | `points`, `weights` |
 //! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
 //! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
+//! | [`BezierSurface`] | `points` (rows along `u`) |
+//! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points` |
+//! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights` |
 //! | [`Tolerance`] | `relative`, `max_iterations` |
 //! | [`Ray`] | `origin`, `dir` |
 //! | [`Aabb`] | `min`, `max` |
@@ -58,7 +61,10 @@ use nalgebra::{Point, Point3, Unit, Vector3};
 use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::{Aabb, BSpline, Bezier, Curve, Nurbs, RationalBezier, Ray, Revolution, Tolerance};
+use crate::{
+    Aabb, BSpline, BSplineSurface, Bezier, BezierSurface, Curve, Nurbs, NurbsSurface,
+    RationalBezier, Ray, Revolution, Tolerance,
+};
 
 /// A crate error as the deserializer's error, with the crate's message.
 fn invalid<E: serde::de::Error>(e: crate::Error) -> E {
@@ -175,6 +181,97 @@ impl<'de, const D: usize> Deserialize<'de> for Nurbs<D> {
             data.knots.into_owned(),
             data.points.into_owned(),
             data.weights.into_owned(),
+        )
+        .map_err(invalid)
+    }
+}
+
+/// The defining data of a [`BezierSurface`]: its control net, rows along `u`.
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "BezierSurface", deny_unknown_fields)]
+struct BezierSurfaceData<'a> {
+    points: Cow<'a, [Vec<Point3<f64>>]>,
+}
+
+impl Serialize for BezierSurface {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        BezierSurfaceData {
+            points: Cow::Borrowed(self.points()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for BezierSurface {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = BezierSurfaceData::deserialize(deserializer)?;
+        BezierSurface::new(data.points.into_owned()).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`BSplineSurface`] or, with weights, a
+/// [`NurbsSurface`].
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TensorSplineData<'a> {
+    degrees: (usize, usize),
+    knots: (Cow<'a, [f64]>, Cow<'a, [f64]>),
+    points: Cow<'a, [Vec<Point3<f64>>]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    weights: Option<Cow<'a, [Vec<f64>]>>,
+}
+
+impl Serialize for BSplineSurface {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let (ku, kv) = self.knots();
+        TensorSplineData {
+            degrees: self.degrees(),
+            knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
+            points: Cow::Borrowed(self.points()),
+            weights: None,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for BSplineSurface {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = TensorSplineData::deserialize(deserializer)?;
+        if data.weights.is_some() {
+            return Err(serde::de::Error::custom(
+                "a B-spline surface has no weights (read it as a NurbsSurface)",
+            ));
+        }
+        let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
+        BSplineSurface::new(data.degrees, knots, data.points.into_owned()).map_err(invalid)
+    }
+}
+
+impl Serialize for NurbsSurface {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let (ku, kv) = self.knots();
+        TensorSplineData {
+            degrees: self.degrees(),
+            knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
+            points: Cow::Borrowed(self.points()),
+            weights: Some(Cow::Borrowed(self.weights())),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for NurbsSurface {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = TensorSplineData::deserialize(deserializer)?;
+        let Some(weights) = data.weights else {
+            return Err(serde::de::Error::missing_field("weights"));
+        };
+        let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
+        NurbsSurface::new(
+            data.degrees,
+            knots,
+            data.points.into_owned(),
+            weights.into_owned(),
         )
         .map_err(invalid)
     }

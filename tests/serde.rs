@@ -16,8 +16,8 @@ mod common;
 use common::{GLASS, Rng, VASE, points};
 use revolve::nalgebra::{Point2, Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BSpline, Bezier, Curve, Error, Intersect, Nurbs, RationalBezier, Ray, Revolution,
-    Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierSurface, Curve, Error, Intersect, Nurbs,
+    NurbsSurface, RationalBezier, Ray, Revolution, Surface, Tolerance,
 };
 use serde::de::value::{Error as TreeError, MapDeserializer, SeqDeserializer};
 use serde::de::{DeserializeOwned, IntoDeserializer, Visitor};
@@ -647,4 +647,91 @@ fn json_errors_carry_the_crate_message() {
         weight: 0.0,
     };
     assert!(e.to_string().starts_with(&expected.to_string()), "{e}");
+}
+
+/// A `rows × cols` net of random points.
+fn net(rng: &mut Rng, rows: usize, cols: usize) -> Vec<Vec<Point3<f64>>> {
+    (0..rows)
+        .map(|_| {
+            (0..cols)
+                .map(|_| {
+                    Point3::new(
+                        rng.range(-2.0, 2.0),
+                        rng.range(-2.0, 2.0),
+                        rng.range(-2.0, 2.0),
+                    )
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Asserts that `surface` comes back from JSON equal and evaluates to the
+/// same bits (points and partials) over its domain.
+#[track_caller]
+fn assert_tensor_round_trip<S>(surface: &S)
+where
+    S: Serialize + DeserializeOwned + PartialEq + Debug + Surface,
+{
+    let back: S = json_round_trip(surface);
+    assert_eq!(&back, surface);
+    let [(u0, u1), (v0, v1)] = surface.domain();
+    for i in 0..=8 {
+        for j in 0..=8 {
+            let (u, v) = (
+                u0 + (u1 - u0) * i as f64 / 8.0,
+                v0 + (v1 - v0) * j as f64 / 8.0,
+            );
+            assert_eq!(back.eval(u, v), surface.eval(u, v));
+            assert_eq!(back.partials(u, v), surface.partials(u, v));
+        }
+    }
+}
+
+/// Tensor-product surfaces round-trip equal and evaluate alike; bad data
+/// (a ragged row, a wrong knot count, a zero weight, weights on a B-spline
+/// surface, missing weights on a NURBS one) is refused.
+#[test]
+fn tensor_surfaces_round_trip_and_bad_data_is_refused() {
+    let mut rng = Rng(0x7E45);
+    for _ in 0..20 {
+        let bezier = BezierSurface::new(net(&mut rng, 4, 3)).unwrap();
+        assert_tensor_round_trip(&bezier);
+        let knots = (
+            vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
+        );
+        let points = net(&mut rng, 5, 5);
+        let spline = BSplineSurface::new((3, 2), knots.clone(), points.clone()).unwrap();
+        assert_tensor_round_trip(&spline);
+        let weights: Vec<Vec<f64>> = (0..5)
+            .map(|_| (0..5).map(|_| rng.range(0.05, 20.0)).collect())
+            .collect();
+        let nurbs = NurbsSurface::new((3, 2), knots, points, weights).unwrap();
+        assert_tensor_round_trip(&nurbs);
+    }
+    let ragged = r#"{"points":[[[0,0,0],[1,0,0]],[[0,1,0]]]}"#;
+    let err = serde_json::from_str::<BezierSurface>(ragged)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("row"), "{err}");
+    let short = r#"{"degrees":[1,1],"knots":[[0,0,1],[0,0,1,1]],"points":[[[0,0,0],[1,0,0]],[[0,1,0],[1,1,0]]]}"#;
+    let err = serde_json::from_str::<BSplineSurface>(short)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("knot count"), "{err}");
+    let bilinear = r#""degrees":[1,1],"knots":[[0,0,1,1],[0,0,1,1]],"points":[[[0,0,0],[1,0,0]],[[0,1,0],[1,1,0]]]"#;
+    assert!(serde_json::from_str::<BSplineSurface>(&format!("{{{bilinear}}}")).is_ok());
+    let zero = format!(r#"{{{bilinear},"weights":[[1,0],[1,1]]}}"#);
+    let err = serde_json::from_str::<NurbsSurface>(&zero)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("weight"), "{err}");
+    let with = format!(r#"{{{bilinear},"weights":[[1,2],[1,1]]}}"#);
+    assert!(serde_json::from_str::<NurbsSurface>(&with).is_ok());
+    assert!(serde_json::from_str::<BSplineSurface>(&with).is_err());
+    let err = serde_json::from_str::<NurbsSurface>(&format!("{{{bilinear}}}"))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("weights"), "{err}");
 }
