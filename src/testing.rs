@@ -24,7 +24,7 @@
 //! `|f|/L`, which a wrong derivative (a wrong factor, a missing term) misses
 //! by orders of magnitude while correct ones pass with a wide margin.
 
-use crate::{BSpline, Bezier, Curve, Ray, Surface};
+use crate::{BSpline, Bezier, BoundedSurface, Curve, Ray, Surface};
 use nalgebra::{Point, Point2, Point3, SVector, Vector3};
 use proptest::prelude::*;
 use std::fmt;
@@ -371,6 +371,70 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
                     error,
                     limit: 1e-9,
                 });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks [`BoundedSurface::bound_patch`] against samples: for the whole
+/// domain and for each of the `4 × 4` and `3 × 5` sub-rectangles of it
+/// (edges included, so that patch and knot boundaries are crossed), every
+/// point of an `n × n` grid over the rectangle, its corners and edges
+/// included, lies in the box (no slack: the box must be conservative).
+/// `n` is clamped to `2 ..= 64`; a domain that is not finite and non-empty
+/// is a violation.
+///
+/// ```
+/// use revolve::testing::check_surface_bounds;
+/// use revolve::BezierSurface;
+/// use revolve::nalgebra::Point3;
+///
+/// let saddle = BezierSurface::new(vec![
+///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 1.0)],
+///     vec![Point3::new(1.0, 0.0, 1.0), Point3::new(1.0, 1.0, 0.0)],
+/// ])?;
+/// assert!(check_surface_bounds(&saddle, 9).is_ok());
+/// # Ok::<(), revolve::Error>(())
+/// ```
+pub fn check_surface_bounds<S: BoundedSurface>(surface: &S, n: usize) -> Result<(), LawViolation> {
+    let [(u0, u1), (v0, v1)] = checked_domain(surface)?;
+    let n = n.clamp(2, MAX_SAMPLES.isqrt());
+    let at = |lo: f64, hi: f64, i: usize, m: usize| {
+        if i == m {
+            hi
+        } else {
+            lo + (hi - lo) * i as f64 / m as f64
+        }
+    };
+    let mut rects = vec![((u0, u1), (v0, v1))];
+    for (cu, cv) in [(4, 4), (3, 5)] {
+        for i in 0..cu {
+            for j in 0..cv {
+                rects.push((
+                    (at(u0, u1, i, cu), at(u0, u1, i + 1, cu)),
+                    (at(v0, v1, j, cv), at(v0, v1, j + 1, cv)),
+                ));
+            }
+        }
+    }
+    for (u, v) in rects {
+        let b = surface.bound_patch(u, v);
+        for i in 0..n {
+            for j in 0..n {
+                let (su, sv) = (at(u.0, u.1, i, n - 1), at(v.0, v.1, j, n - 1));
+                let p = surface.eval(su, sv);
+                if !b.contains(&p) {
+                    // How far outside the box the sample lies.
+                    let error =
+                        (0..3).fold(0.0_f64, |m, k| m.max(b.min[k] - p[k]).max(p[k] - b.max[k]));
+                    return Err(LawViolation {
+                        law: "bound_patch contains the sub-patch",
+                        at: vec![su, sv, u.0, u.1, v.0, v.1],
+                        error: if error.is_nan() { f64::INFINITY } else { error },
+                        limit: 0.0,
+                    });
+                }
             }
         }
     }
