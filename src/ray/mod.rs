@@ -10,6 +10,7 @@ mod double_double;
 mod meridian_cells;
 mod meridian_newton;
 pub mod newton;
+pub(crate) mod patch;
 pub(crate) mod profile_refine;
 pub(crate) mod revolution;
 mod select;

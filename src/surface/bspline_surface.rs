@@ -209,6 +209,22 @@ impl BoundedSurface for BSplineSurface {
     }
 }
 
+/// Ray intersection by subdivision of the ray's two plane distances on each
+/// Bézier patch, finished by Newton's method (see [`crate::ray`]'s patch
+/// search): no transversal hit is missed and every hit reported lies on the
+/// surface to the default [`Tolerance`](crate::Tolerance). `Hit::uv` is
+/// `(u, v)` in the surface's parameters; the normal follows
+/// `∂S/∂u × ∂S/∂v` (the limit at collapsed edges).
+impl crate::Intersect for BSplineSurface {
+    fn intersect(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<crate::Hit> {
+        self.core.table.hit(ray, t_min, t_max)
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.core.table.boxes.all
+    }
+}
+
 /// A (rational or polynomial) tensor-product spline: the data and the
 /// Bézier patch table shared by [`BSplineSurface`] and
 /// [`NurbsSurface`](crate::NurbsSurface).

@@ -7,7 +7,7 @@ mod mesh;
 mod nurbs_surface;
 mod profile_approximation;
 mod revolution;
-mod tensor_patch;
+pub(crate) mod tensor_patch;
 
 pub use bezier_surface::BezierSurface;
 pub use bspline_surface::{BSplineSurface, BezierPatch};

@@ -11,8 +11,9 @@
 
 use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::{Homogeneous, validate_points, validate_weights};
+use crate::ray::patch::{PatchBoxes, intersect};
 use crate::scratch::with_scratch;
-use crate::{Aabb, Error};
+use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 
 /// One Bézier patch of a tensor-product surface, on the parameter rectangle
@@ -43,6 +44,8 @@ pub(crate) struct PatchTable {
     /// The largest extent of the box of the projected control points
     /// (the scale of the normal's degeneracy test), computed once.
     extent: f64,
+    /// The patches' boxes for ray intersection, computed once.
+    pub(crate) boxes: PatchBoxes,
 }
 
 /// Value and derivatives up to order 2 (`d[a][b] = ∂ᵃ⁺ᵇ/∂uᵃ∂vᵇ`, `a + b ≤ 2`).
@@ -174,12 +177,14 @@ impl PatchTable {
                 b = b.include(&Point3::from(h.wp / h.w));
             }
         }
+        let boxes = PatchBoxes::new(&patches);
         PatchTable {
             degrees,
             u_breaks,
             v_breaks,
             patches,
             extent: b.extent().amax(),
+            boxes,
         }
     }
 
@@ -220,6 +225,24 @@ impl PatchTable {
             }
         }
         d
+    }
+
+    /// The nearest hit of `ray` with `t_min < t < t_max` (see
+    /// [`crate::ray::patch`]): the point is `S(u, v)`, the normal follows
+    /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; facing the ray where
+    /// no tangent plane exists).
+    pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let found = intersect(self, ray, t_min, t_max, &Tolerance::default())?;
+        let point = self.eval(found.u, found.v);
+        let normal = self
+            .normal(found.u, found.v)
+            .or_else(|| Unit::try_new(-ray.dir / ray.dir.amax(), 0.0))?;
+        Some(Hit {
+            t: found.t,
+            point,
+            normal,
+            uv: (found.u, found.v),
+        })
     }
 
     /// `S(u, v)`.
