@@ -194,6 +194,7 @@ fn benches(c: &mut Criterion) {
 
     bench_cylinder_floor(c);
     bench_sphere_floor(c);
+    bench_patches(c);
 }
 
 /// Radius and height of [`common::CYLINDER`].
@@ -377,6 +378,39 @@ fn bench_sphere_floor(c: &mut Criterion) {
         bench.iter(|| {
             i = (i + 1) & MASK;
             black_box(&sphere).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
+        })
+    });
+    group.finish();
+}
+
+/// Tensor-product patches through the subdivision search: a bicubic Bézier
+/// patch with a folded net (rays can cross it up to several times) on random
+/// rays through its box.
+fn bench_patches(c: &mut Criterion) {
+    let net: Vec<Vec<Point3<f64>>> = (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
+                    let z = if (i + j) % 2 == 0 { 0.4 } else { -0.4 };
+                    Point3::new(x + 0.3 * (j as f64 - 1.5).powi(2), y, z)
+                })
+                .collect()
+        })
+        .collect();
+    let patch = revolve::BezierSurface::new(net).expect("a valid net");
+    let rays = box_rays(&patch.bounds(), false, 9);
+    let hits = rays
+        .iter()
+        .filter(|r| patch.intersect(r, 0.0, f64::INFINITY).is_some())
+        .count();
+    eprintln!("bicubic patch: {hits} of {N_RAYS} rays hit");
+    let mut group = c.benchmark_group("intersect_patch");
+    let mut i = 0;
+    group.bench_function(BenchmarkId::new("bicubic", "random"), |bench| {
+        bench.iter(|| {
+            i = (i + 1) & MASK;
+            black_box(&patch).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
         })
     });
     group.finish();
