@@ -12,10 +12,13 @@
 //! rounding bound (the convex hull property: the polynomial then has that
 //! sign on the whole box), or when all its `γ/w` ratios lie outside the
 //! range still searched. Boxes that survive are halved (de Casteljau, in the
-//! parameter whose box is wider) until they are smaller than [`SMALL`];
-//! Newton's method on the 2 × 2 system `(e₁·(S − o), e₂·(S − o)) = 0` then
-//! runs from the box's centre (and its corners if needed), and a point it
-//! reaches on the patch with a residual within the tolerance is a hit.
+//! parameter whose box is wider) until Krawczyk's test proves that a box
+//! holds exactly one root ([`unique_root`]) or the box is smaller than
+//! [`SMALL`]; Newton's method on the 2 × 2 system
+//! `(e₁·(S − o), e₂·(S − o)) = 0` then runs from the box's centre (and its
+//! corners if needed), and a point it reaches on the patch (inside the box,
+//! for a box proven to hold one root) with a residual within the tolerance
+//! is a hit.
 //! Boxes are visited nearest first along the ray (depth-first, the nearer
 //! half first) and the search stops at the best hit so far.
 //!
@@ -225,6 +228,26 @@ pub(crate) fn intersect(
                 }
                 continue;
             }
+            // A box that holds exactly one root (Krawczyk's test) is
+            // finished by Newton's method if it lands inside the box.
+            if ws.max(wt) <= TRY_UNIQUE && unique_root(coef, p, q, bound) {
+                if let Some(hit) = polish(table, k, &frame, cell) {
+                    let patch = &table.patches[k];
+                    let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
+                    let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
+                    let inside = s_hit >= cell.s.0 - SLACK
+                        && s_hit <= cell.s.1 + SLACK
+                        && t_hit >= cell.t.0 - SLACK
+                        && t_hit <= cell.t.1 + SLACK;
+                    if inside {
+                        if hit.t > t_floor && hit.t < t_best {
+                            t_best = hit.t;
+                            best = Some(hit);
+                        }
+                        continue;
+                    }
+                }
+            }
             // Halve in the wider parameter; the nearer half is searched
             // first (pushed last).
             let split_s = ws >= wt;
@@ -260,6 +283,122 @@ pub(crate) fn intersect(
         }
     }
     best
+}
+
+/// Boxes at most this wide (in both parameters) try the uniqueness test.
+const TRY_UNIQUE: f64 = 1.0 / 8.0;
+
+/// Krawczyk's test on the box's coefficients (in the box's own parameters
+/// `x ∈ [0, 1]²`): with `c` the centre, `J` an interval enclosure of the
+/// Jacobian of `F = (α, β)` over the box (from the derivative nets: `p` times
+/// the range of the differences in the first parameter, `q` times in the
+/// second) and `Y` the inverse of its midpoint,
+/// `K = c − Y·F(c) + (I − Y·J)·([0, 1]² − c)`. If `K` lies strictly inside
+/// the box, the box holds exactly one root of `F` (Krawczyk 1969; Moore,
+/// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2). Every
+/// coefficient carries `bound` of rounding, which widens `F(c)` and `J`;
+/// `K` must clear the box's sides by `1e-6`.
+fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
+    let cols = q + 1;
+    // Interval Jacobian: rows α, β; columns ∂/∂x₀ (rows of the net), ∂/∂x₁.
+    let mut jac = [[(f64::INFINITY, f64::NEG_INFINITY); 2]; 2];
+    let widen = |r: &mut (f64, f64), x: f64| {
+        r.0 = r.0.min(x);
+        r.1 = r.1.max(x);
+    };
+    for i in 0..=p {
+        for j in 0..=q {
+            let c = coef[i * cols + j];
+            for f in 0..2 {
+                if i < p {
+                    widen(
+                        &mut jac[f][0],
+                        p as f64 * (coef[(i + 1) * cols + j][f] - c[f]),
+                    );
+                }
+                if j < q {
+                    widen(
+                        &mut jac[f][1],
+                        q as f64 * (coef[i * cols + j + 1][f] - c[f]),
+                    );
+                }
+            }
+        }
+    }
+    for row in jac.iter_mut() {
+        for (k, r) in row.iter_mut().enumerate() {
+            let degree = if k == 0 { p } else { q };
+            if degree == 0 {
+                *r = (0.0, 0.0);
+            }
+            let pad = 2.0 * degree as f64 * bound;
+            *r = (r.0 - pad, r.1 + pad);
+        }
+    }
+    // F at the centre: de Casteljau at ½ in both parameters.
+    let mut centre = [0.0_f64; 2];
+    for (f, value) in centre.iter_mut().enumerate() {
+        let mut row_values = [0.0_f64; 32];
+        if p + 1 > 32 || cols > 32 {
+            return false;
+        }
+        for (i, slot) in row_values.iter_mut().enumerate().take(p + 1) {
+            let mut w = [0.0_f64; 32];
+            for j in 0..cols {
+                w[j] = coef[i * cols + j][f];
+            }
+            *slot = half_value(&mut w[..cols]);
+        }
+        *value = half_value(&mut row_values[..p + 1]);
+    }
+    let mid = |r: (f64, f64)| 0.5 * (r.0 + r.1);
+    let m = [
+        [mid(jac[0][0]), mid(jac[0][1])],
+        [mid(jac[1][0]), mid(jac[1][1])],
+    ];
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    if det == 0.0 || !det.is_finite() {
+        return false;
+    }
+    let y = [
+        [m[1][1] / det, -m[0][1] / det],
+        [-m[1][0] / det, m[0][0] / det],
+    ];
+    for i in 0..2 {
+        // c − Y F(c), with F(c) ± bound.
+        let yf = y[i][0] * centre[0] + y[i][1] * centre[1];
+        let mut radius = (y[i][0].abs() + y[i][1].abs()) * bound;
+        // (I − Y J)(x − c), x − c ∈ [−½, ½]².
+        for k in 0..2 {
+            let identity = if i == k { 1.0 } else { 0.0 };
+            // (Y J)_{ik} = Σ_j Y_ij J_jk: an interval.
+            let (mut lo, mut hi) = (0.0, 0.0);
+            for j in 0..2 {
+                let (a, b) = (y[i][j] * jac[j][k].0, y[i][j] * jac[j][k].1);
+                lo += a.min(b);
+                hi += a.max(b);
+            }
+            let magnitude = (identity - lo).abs().max((identity - hi).abs());
+            radius += 0.5 * magnitude;
+        }
+        let centre_i = 0.5 - yf;
+        if !(centre_i - radius > 1e-6 && centre_i + radius < 1.0 - 1e-6) {
+            return false;
+        }
+    }
+    true
+}
+
+/// The value at ½ of the Bernstein polynomial with coefficients `w`
+/// (overwritten).
+fn half_value(w: &mut [f64]) -> f64 {
+    let n = w.len();
+    for level in 1..n {
+        for k in 0..n - level {
+            w[k] = 0.5 * (w[k] + w[k + 1]);
+        }
+    }
+    w[0]
 }
 
 /// Exchanges the contents of two equal-length slices.
