@@ -298,6 +298,8 @@ const TRY_UNIQUE: f64 = 1.0 / 8.0;
 /// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2). Every
 /// coefficient carries `bound` of rounding, which widens `F(c)` and `J`;
 /// `K` must clear the box's sides by `1e-6`.
+// Index loops mirror the matrix formulas.
+#[allow(clippy::needless_range_loop)]
 fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
     let cols = q + 1;
     // Interval Jacobian: rows α, β; columns ∂/∂x₀ (rows of the net), ∂/∂x₁.
