@@ -416,8 +416,10 @@ fn min_distance(coef: &[[f64; 4]]) -> f64 {
 }
 
 /// Whether the box certainly holds no hit in the searched range: all `α`
-/// (or all `β`) beyond `bound` of one sign, or all distances `γ/w` below
-/// `lo` or above `hi` (with slack for rounding).
+/// (or all `β`) beyond `bound` of one sign, all distances `γ/w` below `lo`
+/// or above `hi` (with slack for rounding), or all points `(αᵢⱼ, βᵢⱼ)` on
+/// the far side of a line through the origin (perpendicular to their mean,
+/// by more than the projection's rounding: `|g|₁ = 1`, so `2·bound`).
 fn excluded(coef: &[[f64; 4]], bound: f64, lo: f64, hi: f64) -> bool {
     let (mut a_pos, mut a_neg, mut b_pos, mut b_neg) = (true, true, true, true);
     let (mut g_lo, mut g_hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -431,7 +433,24 @@ fn excluded(coef: &[[f64; 4]], bound: f64, lo: f64, hi: f64) -> bool {
         g_hi = g_hi.max(g);
     }
     let slack = bound / coef.iter().fold(f64::INFINITY, |m, c| m.min(c[3]));
-    a_pos || a_neg || b_pos || b_neg || g_hi < lo - slack || g_lo > hi + slack
+    if a_pos || a_neg || b_pos || b_neg || g_hi < lo - slack || g_lo > hi + slack {
+        return true;
+    }
+    // A separating direction in the (α, β) plane: the mean of the points.
+    // If every point lies beyond the line through the origin perpendicular
+    // to it (by more than the rounding of the projection), their hull, and
+    // so every value of (α, β) on the box, misses the origin.
+    let (mut ga, mut gb) = (0.0, 0.0);
+    for c in coef {
+        ga += c[0];
+        gb += c[1];
+    }
+    let norm = ga.abs() + gb.abs();
+    if !(norm > 0.0 && norm.is_finite()) {
+        return false;
+    }
+    let (ga, gb) = (ga / norm, gb / norm);
+    coef.iter().all(|c| ga * c[0] + gb * c[1] > 2.0 * bound)
 }
 
 /// Splits the box coefficients `parent` at the middle of `s` (rows) or of
