@@ -5,9 +5,11 @@
 
 mod common;
 
+use common::tensor_shapes::sphere_octant;
+
 use common::Rng;
 use revolve::nalgebra::{Point3, Vector3};
-use revolve::{BSplineSurface, BezierSurface, Intersect, NurbsSurface, Ray, Surface};
+use revolve::{BSplineSurface, BezierSurface, Intersect, Ray, Surface};
 
 /// The roots in `[0, 1]` of `a + b·x + c·x²` (stable formula; a linear or
 /// constant equation when `c` is negligible).
@@ -203,27 +205,6 @@ fn planar_bicubic_patches_are_their_affine_map() {
         }
     }
     assert!(hits > 1500, "{hits} hits");
-}
-
-/// The octant x, y, z ≥ 0 of the sphere of radius `r` as a NURBS surface.
-fn sphere_octant(r: f64) -> NurbsSurface {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    let meridian = [(0.0, r, 1.0), (r, r, h), (r, 0.0, 1.0)];
-    let turn = [(1.0, 0.0, 1.0), (1.0, 1.0, h), (0.0, 1.0, 1.0)];
-    let points = meridian
-        .iter()
-        .map(|&(x, z, _)| {
-            turn.iter()
-                .map(|&(c, s, _)| Point3::new(x * c, x * s, z))
-                .collect()
-        })
-        .collect();
-    let weights = meridian
-        .iter()
-        .map(|&(_, _, a)| turn.iter().map(|&(_, _, b)| a * b).collect())
-        .collect();
-    let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
-    NurbsSurface::new((2, 2), (k.clone(), k), points, weights).unwrap()
 }
 
 /// The NURBS sphere octant against the ray–sphere quadratic: the nearest

@@ -338,12 +338,12 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
         }
     }
     // F at the centre: de Casteljau at ½ in both parameters.
+    if p + 1 > 32 || cols > 32 {
+        return false;
+    }
     let mut centre = [0.0_f64; 2];
     for (f, value) in centre.iter_mut().enumerate() {
         let mut row_values = [0.0_f64; 32];
-        if p + 1 > 32 || cols > 32 {
-            return false;
-        }
         for (i, slot) in row_values.iter_mut().enumerate().take(p + 1) {
             let mut w = [0.0_f64; 32];
             for j in 0..cols {

@@ -1,10 +1,9 @@
 //! Tensor-product Bézier surfaces.
 
 use super::tensor_patch::{Patch, PatchTable, flatten_points, rows_and_columns};
-use super::{BoundedSurface, Surface};
+use crate::Error;
 use crate::curve::{Homogeneous, check_derivatives};
-use crate::{Aabb, Error};
-use nalgebra::{Point3, Unit, Vector3};
+use nalgebra::{Point3, Vector3};
 
 /// A tensor-product Bézier surface
 /// `S(u, v) = Σᵢ Σⱼ Pᵢⱼ Bᵢᵐ(u) Bⱼⁿ(v)` on `[0, 1]²`, of degrees
@@ -121,42 +120,4 @@ impl BezierSurface {
     }
 }
 
-impl Surface for BezierSurface {
-    fn domain(&self) -> [(f64, f64); 2] {
-        [(0.0, 1.0), (0.0, 1.0)]
-    }
-
-    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
-        self.table.eval(u, v)
-    }
-
-    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
-        self.table.partials(u, v)
-    }
-
-    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
-        self.table.normal(u, v)
-    }
-}
-
-impl BoundedSurface for BezierSurface {
-    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
-        self.table.bound(u, v)
-    }
-}
-
-/// Ray intersection by subdivision of the ray's two plane distances on each
-/// Bézier patch, finished by Newton's method (see [`crate::ray`]'s patch
-/// search): no transversal hit is missed and every hit reported lies on the
-/// surface to the default [`Tolerance`](crate::Tolerance). `Hit::uv` is
-/// `(u, v)` in the surface's parameters; the normal follows
-/// `∂S/∂u × ∂S/∂v` (the limit at collapsed edges).
-impl crate::Intersect for BezierSurface {
-    fn intersect(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<crate::Hit> {
-        self.table.hit(ray, t_min, t_max)
-    }
-
-    fn bounds(&self) -> Aabb {
-        self.table.boxes.all
-    }
-}
+super::tensor_patch::tensor_surface_traits!(BezierSurface, table);

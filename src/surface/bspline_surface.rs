@@ -6,13 +6,12 @@ use super::tensor_patch::{
     Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
     weight_scale,
 };
-use super::{BoundedSurface, Surface};
+use crate::Error;
 use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{
     Homogeneous, boehm_insert, check_derivative_points, knot_to_insert, validate_knots,
 };
-use crate::{Aabb, Error};
-use nalgebra::{Point1, Point3, Unit, Vector3};
+use nalgebra::{Point1, Point3, Vector3};
 
 /// A tensor-product B-spline surface
 /// `S(u, v) = Σᵢ Σⱼ Pᵢⱼ Nᵢ,ₚ(u) Nⱼ,q(v)` of degrees `(p, q)`, knot vectors
@@ -185,45 +184,7 @@ impl BSplineSurface {
     }
 }
 
-impl Surface for BSplineSurface {
-    fn domain(&self) -> [(f64, f64); 2] {
-        self.core.table.domain()
-    }
-
-    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
-        self.core.table.eval(u, v)
-    }
-
-    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
-        self.core.table.partials(u, v)
-    }
-
-    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
-        self.core.table.normal(u, v)
-    }
-}
-
-impl BoundedSurface for BSplineSurface {
-    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
-        self.core.table.bound(u, v)
-    }
-}
-
-/// Ray intersection by subdivision of the ray's two plane distances on each
-/// Bézier patch, finished by Newton's method (see [`crate::ray`]'s patch
-/// search): no transversal hit is missed and every hit reported lies on the
-/// surface to the default [`Tolerance`](crate::Tolerance). `Hit::uv` is
-/// `(u, v)` in the surface's parameters; the normal follows
-/// `∂S/∂u × ∂S/∂v` (the limit at collapsed edges).
-impl crate::Intersect for BSplineSurface {
-    fn intersect(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<crate::Hit> {
-        self.core.table.hit(ray, t_min, t_max)
-    }
-
-    fn bounds(&self) -> Aabb {
-        self.core.table.boxes.all
-    }
-}
+super::tensor_patch::tensor_surface_traits!(BSplineSurface, core.table);
 
 /// A (rational or polynomial) tensor-product spline: the data and the
 /// Bézier patch table shared by [`BSplineSurface`] and

@@ -1,9 +1,9 @@
 //! Tensor-product rational B-spline (NURBS) surfaces.
 
+use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
-use super::{BSplineSurface, BoundedSurface, Surface};
-use crate::{Aabb, Error};
-use nalgebra::{Point3, Unit, Vector3};
+use crate::Error;
+use nalgebra::{Point3, Vector3};
 
 /// A NURBS surface
 /// `S(u, v) = Σᵢⱼ wᵢⱼPᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v) / Σᵢⱼ wᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v)` with
@@ -168,42 +168,4 @@ impl From<BSplineSurface> for NurbsSurface {
     }
 }
 
-impl Surface for NurbsSurface {
-    fn domain(&self) -> [(f64, f64); 2] {
-        self.core.table.domain()
-    }
-
-    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
-        self.core.table.eval(u, v)
-    }
-
-    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
-        self.core.table.partials(u, v)
-    }
-
-    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
-        self.core.table.normal(u, v)
-    }
-}
-
-impl BoundedSurface for NurbsSurface {
-    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
-        self.core.table.bound(u, v)
-    }
-}
-
-/// Ray intersection by subdivision of the ray's two plane distances on each
-/// Bézier patch, finished by Newton's method (see [`crate::ray`]'s patch
-/// search): no transversal hit is missed and every hit reported lies on the
-/// surface to the default [`Tolerance`](crate::Tolerance). `Hit::uv` is
-/// `(u, v)` in the surface's parameters; the normal follows
-/// `∂S/∂u × ∂S/∂v` (the limit at collapsed edges).
-impl crate::Intersect for NurbsSurface {
-    fn intersect(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<crate::Hit> {
-        self.core.table.hit(ray, t_min, t_max)
-    }
-
-    fn bounds(&self) -> Aabb {
-        self.core.table.boxes.all
-    }
-}
+super::tensor_patch::tensor_surface_traits!(NurbsSurface, core.table);

@@ -16,6 +16,57 @@ use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 
+/// `Surface`, `BoundedSurface` and `Intersect` for a tensor-product surface
+/// type whose [`PatchTable`] is at `self.$($path).+`: each method is the
+/// table's.
+macro_rules! tensor_surface_traits {
+    ($ty:ty, $($path:ident).+) => {
+        impl $crate::Surface for $ty {
+            fn domain(&self) -> [(f64, f64); 2] {
+                self.$($path).+.domain()
+            }
+
+            fn eval(&self, u: f64, v: f64) -> nalgebra::Point3<f64> {
+                self.$($path).+.eval(u, v)
+            }
+
+            fn partials(&self, u: f64, v: f64) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>) {
+                self.$($path).+.partials(u, v)
+            }
+
+            fn normal(&self, u: f64, v: f64) -> Option<nalgebra::Unit<nalgebra::Vector3<f64>>> {
+                self.$($path).+.normal(u, v)
+            }
+        }
+
+        impl $crate::BoundedSurface for $ty {
+            fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> $crate::Aabb {
+                self.$($path).+.bound(u, v)
+            }
+        }
+
+        /// Ray intersection by subdivision of the ray's two plane distances
+        /// on each Bézier patch: a box is dropped only where a certain sign
+        /// rules a hit out; a box that Krawczyk's test proves to hold one
+        /// root, or one below `2⁻¹⁴` a side, is finished by Newton's method,
+        /// and only points on the surface to the default
+        /// [`Tolerance`](crate::Tolerance) are hits. `Hit::uv` is `(u, v)` in
+        /// the surface's parameters; the normal follows `∂S/∂u × ∂S/∂v` (the
+        /// limit at collapsed edges).
+        impl $crate::Intersect for $ty {
+            fn intersect(&self, ray: &$crate::Ray, t_min: f64, t_max: f64) -> Option<$crate::Hit> {
+                self.$($path).+.hit(ray, t_min, t_max)
+            }
+
+            fn bounds(&self) -> $crate::Aabb {
+                self.$($path).+.boxes.all
+            }
+        }
+    };
+}
+
+pub(crate) use tensor_surface_traits;
+
 /// One Bézier patch of a tensor-product surface, on the parameter rectangle
 /// `u × v`.
 #[derive(Debug, Clone, PartialEq)]

@@ -21,6 +21,7 @@
 pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
+pub mod tensor_shapes;
 
 use revolve::nalgebra::{Point2, Point3, Vector3};
 use revolve::{Aabb, BSpline, Bezier, Hit, Ray, Revolution, Surface};
