@@ -16,7 +16,7 @@ use nalgebra::{Point3, Vector3};
 ///
 /// # Edge rules
 /// - Parameters outside `[0, 1]` evaluate at the nearest edge; NaN at 0.
-/// - [`normal`](Surface::normal) is `∂S/∂u × ∂S/∂v` normalized. Where that
+/// - [`normal`](crate::Surface::normal) is `∂S/∂u × ∂S/∂v` normalized. Where that
 ///   cross product is negligible (below `(10⁻⁷·D)²` for the typical first
 ///   derivative `D` = net extent × degree / parameter width; a *collapsed
 ///   edge*, all points of a row equal, as on the teapot's lid), the normal is
@@ -34,7 +34,7 @@ use nalgebra::{Point3, Vector3};
 ///   while the partials' cross product is resolved (sine of their angle
 ///   `≥ 10⁻⁶`); if successive ones converge (within `10⁻³`) the last is the
 ///   normal. `None` where none of these gives a normal: no tangent plane.
-/// - [`bound_patch`](BoundedSurface::bound_patch) is the box of the
+/// - [`bound_patch`](crate::BoundedSurface::bound_patch) is the box of the
 ///   sub-patch's control net (de Casteljau subdivision; convex hull
 ///   property), padded for rounding.
 ///
