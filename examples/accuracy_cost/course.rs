@@ -6,7 +6,7 @@
 use crate::common::Rng;
 use crate::model::Method;
 use revolve::nalgebra::{Isometry3, Matrix3, Vector3};
-use revolve::{Aabb, BoundedSurface, Curve, Intersect, Ray, Revolution, Surface};
+use revolve::{Aabb, BezierSurface, BoundedSurface, Curve, Intersect, Ray, Revolution, Surface};
 use std::f64::consts::TAU;
 
 /// The margin `ε` of the acceptance test: a hit needs `t > ε` and both
@@ -23,20 +23,21 @@ pub const STRAY: f64 = 0.3;
 /// report does not give its `NEWTON_DELTA`; `10⁻⁶` is assumed.
 pub const RELATIVE_DELTA: f64 = 1e-6;
 
-/// A surface turned about an axis: what the course method needs besides the
-/// [`Surface`] (the axis, to take the angle of the box entry point, and a
-/// bounding box).
-pub trait Turned: Surface {
-    /// The rigid motion from the local frame (axis = local `y`, angle
-    /// `θ = atan2(−z, x)`) to the world.
-    fn axis_frame(&self) -> Isometry3<f64>;
+/// What the course method needs besides the [`Surface`]: a bounding box,
+/// and for a surface turned about an axis that axis (to start the angle at
+/// the box entry point's).
+pub trait Seeded: Surface {
+    /// For a surface of revolution, the rigid motion from the local frame
+    /// (axis = local `y`, angle `θ = atan2(−z, x)`) to the world; `None`
+    /// for a surface without an axis (a patch: `v₀` is uniform).
+    fn axis_frame(&self) -> Option<Isometry3<f64>>;
     /// A box containing the surface.
     fn bounding_box(&self) -> Aabb;
 }
 
-impl<C: Curve<2>> Turned for Revolution<C> {
-    fn axis_frame(&self) -> Isometry3<f64> {
-        *self.to_world()
+impl<C: Curve<2>> Seeded for Revolution<C> {
+    fn axis_frame(&self) -> Option<Isometry3<f64>> {
+        Some(*self.to_world())
     }
 
     fn bounding_box(&self) -> Aabb {
@@ -52,8 +53,20 @@ impl<C: Curve<2>> Turned for Revolution<C> {
     }
 }
 
-impl<T: Turned + ?Sized> Turned for &T {
-    fn axis_frame(&self) -> Isometry3<f64> {
+/// A Bézier patch: no axis; its box is that of its control net (the convex
+/// hull's box, as the course accelerates the search).
+impl Seeded for BezierSurface {
+    fn axis_frame(&self) -> Option<Isometry3<f64>> {
+        None
+    }
+
+    fn bounding_box(&self) -> Aabb {
+        Intersect::bounds(self)
+    }
+}
+
+impl<T: Seeded + ?Sized> Seeded for &T {
+    fn axis_frame(&self) -> Option<Isometry3<f64>> {
         (**self).axis_frame()
     }
 
@@ -82,7 +95,9 @@ impl<T: Turned + ?Sized> Turned for &T {
 ///   `(t_min, t_max)`),
 /// - `u₀`: uniform in `[0, 1]`,
 /// - `v₀`: the angle of the box entry point about the axis (in turns) plus a
-///   uniform offset in `[−0.1, 0.1]`, wrapped into `(0, 1]`,
+///   uniform offset in `[−0.1, 0.1]`, wrapped into `(0, 1]`; on a surface
+///   without an axis (a Bézier patch, [`Seeded::axis_frame`] `None`),
+///   uniform in `[0, 1]` like `u₀`,
 ///
 /// and take at most `i` steps (`iterations`, the report's `NEWTON_ITER`).
 /// After each step `X ← X + ΔX` the attempt is abandoned if `t < −0.3` or
@@ -113,12 +128,12 @@ pub struct CourseNewton<S> {
     delta: f64,
     rng: Rng,
     bounds: Aabb,
-    to_local: Isometry3<f64>,
+    to_local: Option<Isometry3<f64>>,
     domain: [(f64, f64); 2],
     steps: u64,
 }
 
-impl<S: Turned> CourseNewton<S> {
+impl<S: Seeded> CourseNewton<S> {
     /// The method on `surface` with `attempts` random starts of at most
     /// `iterations` steps each, random numbers seeded by `seed`, and the
     /// default `delta` ([`RELATIVE_DELTA`] × the object's scale).
@@ -130,7 +145,7 @@ impl<S: Turned> CourseNewton<S> {
             bounds.scale()
         };
         CourseNewton {
-            to_local: surface.axis_frame().inverse(),
+            to_local: surface.axis_frame().map(|f| f.inverse()),
             domain: surface.domain(),
             surface,
             attempts,
@@ -202,7 +217,7 @@ fn wrap_turn(s: f64) -> f64 {
     if w > 0.0 { w } else { 1.0 }
 }
 
-impl<S: Turned> Method for CourseNewton<S> {
+impl<S: Seeded> Method for CourseNewton<S> {
     fn series(&self) -> String {
         "course Newton".to_string()
     }
@@ -213,12 +228,17 @@ impl<S: Turned> Method for CourseNewton<S> {
 
     fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
         let (t0, _) = self.bounds.clip(ray, t_min, t_max)?;
-        let entry = self.to_local * ray.at(t0);
-        let turn = (-entry.z).atan2(entry.x) / TAU;
+        let turn = self.to_local.map(|frame| {
+            let entry = frame * ray.at(t0);
+            (-entry.z).atan2(entry.x) / TAU
+        });
         let mut best: Option<f64> = None;
         for _ in 0..self.attempts {
             let u0 = self.rng.unit();
-            let v0 = wrap_turn(turn + self.rng.range(-0.1, 0.1));
+            let v0 = match turn {
+                Some(turn) => wrap_turn(turn + self.rng.range(-0.1, 0.1)),
+                None => self.rng.unit(),
+            };
             let found = self.attempt(ray, Vector3::new(t0, u0, v0), t_min, t_max);
             if let Some(t) = found.filter(|&t| best.is_none_or(|b| t < b)) {
                 best = Some(t);

@@ -28,10 +28,18 @@
 //! measures adaptive flattening (tolerance → samples → time → measured
 //! deviation) and uniform discretization (segments → deviation).
 //!
-//! Writes `report.md` (both tables), `intersection.svg` (median error
+//! The same for tensor-product Bézier patches ([`patch_study`]): a gently
+//! curved bicubic, a folded bicubic and Newell's teapot, with revolve's
+//! certified patch intersector, the Newton intersector, the course method
+//! and uniform grid meshes in parry, against a reference certified in
+//! interval arithmetic ([`patch_reference`]).
+//!
+//! Writes `report.md` (the tables), `intersection.svg` (median error
 //! against rays/s, log–log, one series per method, a panel per shape),
-//! `intersection_max.svg` (the same for the maximum error) and `curves.svg`
-//! (deviation against samples) to `DIR` (default `out/accuracy_cost`).
+//! `intersection_max.svg` (the same for the maximum error), the same two for
+//! the patches (`intersection_patches.svg`, `intersection_patches_max.svg`)
+//! and `curves.svg` (deviation against samples) to `DIR` (default
+//! `out/accuracy_cost`).
 //! `--quick` runs every code path at a tiny size (CI).
 
 mod closed_form;
@@ -42,6 +50,10 @@ mod curves;
 mod memory;
 mod mesh_baseline;
 mod model;
+mod patch_grid;
+mod patch_reference;
+mod patch_shapes;
+mod patch_study;
 mod plot;
 mod reference;
 mod report;

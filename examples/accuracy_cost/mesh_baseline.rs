@@ -2,10 +2,12 @@
 
 use crate::memory;
 use crate::model::Method;
+use crate::patch_grid;
 use parry3d_f64::math::Vector as PVector;
 use parry3d_f64::query::{Ray as PRay, RayCast};
 use parry3d_f64::shape::TriMesh;
-use revolve::{Curve, Error, Ray, Revolution};
+use revolve::nalgebra::Point3;
+use revolve::{BezierSurface, Curve, Error, Ray, Revolution};
 use std::time::Instant;
 
 /// A surface of revolution tessellated with [`Revolution::tessellate`] (whose
@@ -18,6 +20,9 @@ pub struct MeshBaseline {
     mesh: Option<TriMesh>,
     bound: f64,
     tolerance: f64,
+    /// How the mesh was made: `"tess"` (a certified tessellation) or
+    /// `"grid"` (uniform grids of Bézier patches, [`patch_grid`]).
+    kind: &'static str,
 }
 
 /// The cost of building a [`MeshBaseline`].
@@ -46,23 +51,64 @@ impl MeshBaseline {
         surface: &Revolution<C>,
         tolerance: f64,
     ) -> Result<(Self, MeshBuild), Error> {
-        let start = Instant::now();
-        let (built, bytes) = memory::held_by(|| -> Result<Self, Error> {
+        Self::timed(|| {
             let mesh = surface.tessellate(tolerance)?;
-            let vertices: Vec<PVector> = mesh
-                .positions
-                .iter()
-                .map(|p| PVector::new(p.x, p.y, p.z))
-                .collect();
-            let bound = mesh.bound;
-            // `TriMesh::new` fails only on an empty index buffer.
-            let trimesh = TriMesh::new(vertices, mesh.triangles).ok();
-            Ok(MeshBaseline {
-                mesh: trimesh,
-                bound,
+            Ok(Self::assemble(
+                &mesh.positions,
+                mesh.triangles,
+                mesh.bound,
                 tolerance,
-            })
-        });
+                "tess",
+            ))
+        })
+    }
+
+    /// Bézier patches meshed by uniform grids within `tolerance`
+    /// ([`patch_grid::grid_mesh`]), as one `TriMesh`; build time and heap as
+    /// for [`build`](Self::build). `None` if the mesh would exceed
+    /// `max_triangles`.
+    pub fn from_patches(
+        patches: &[BezierSurface],
+        tolerance: f64,
+        max_triangles: usize,
+    ) -> Option<(Self, MeshBuild)> {
+        Self::timed(|| {
+            let (positions, triangles, bound) =
+                patch_grid::grid_mesh(patches, tolerance, max_triangles).ok_or(())?;
+            Ok::<_, ()>(Self::assemble(
+                &positions, triangles, bound, tolerance, "grid",
+            ))
+        })
+        .ok()
+    }
+
+    /// The baseline of a mesh: positions converted to parry's vectors, the
+    /// index buffer moved into the `TriMesh`.
+    fn assemble(
+        positions: &[Point3<f64>],
+        triangles: Vec<[u32; 3]>,
+        bound: f64,
+        tolerance: f64,
+        kind: &'static str,
+    ) -> Self {
+        let vertices: Vec<PVector> = positions
+            .iter()
+            .map(|p| PVector::new(p.x, p.y, p.z))
+            .collect();
+        // `TriMesh::new` fails only on an empty index buffer.
+        let mesh = TriMesh::new(vertices, triangles).ok();
+        MeshBaseline {
+            mesh,
+            bound,
+            tolerance,
+            kind,
+        }
+    }
+
+    /// Runs `make`, timing it and counting the heap the result holds.
+    fn timed<E>(make: impl FnOnce() -> Result<Self, E>) -> Result<(Self, MeshBuild), E> {
+        let start = Instant::now();
+        let (built, bytes) = memory::held_by(make);
         let seconds = start.elapsed().as_secs_f64();
         let built = built?;
         let stats = MeshBuild {
@@ -92,7 +138,12 @@ impl Method for MeshBaseline {
     }
 
     fn knob(&self) -> String {
-        format!("tess {:.0e}, {} tris", self.tolerance, self.triangles())
+        format!(
+            "{} {:.0e}, {} tris",
+            self.kind,
+            self.tolerance,
+            self.triangles()
+        )
     }
 
     /// The first triangle crossing with `t_min < t < t_max`, `t` along `dir`

@@ -17,7 +17,8 @@ use crate::mesh_baseline::MeshBaseline;
 use crate::model::{ErrorStats, FAR_HIT, Method, Row};
 use crate::reference::{Certifier, ExactProfile};
 use revolve::{
-    Aabb, BSpline, Bezier, Curve, Intersect, NewtonIntersector, Nurbs, Ray, Revolution, Tolerance,
+    Aabb, BSpline, Bezier, BoundedSurface, Curve, Intersect, NewtonIntersector, Nurbs, Ray,
+    Revolution, Tolerance,
 };
 use std::hint::black_box;
 use std::time::Instant;
@@ -76,7 +77,16 @@ impl Plan {
         }
     }
 
-    /// Rows one shape produces (for the progress bar).
+    /// Rows one patch shape produces: the certified intersector at its one
+    /// (default) tolerance, then as for a revolution without the tolerance
+    /// sweeps ([`crate::patch_study`]).
+    pub fn patch_rows(&self) -> usize {
+        1 + self.newton_depths.len() * self.newton_tolerances.len()
+            + self.course.len()
+            + self.mesh_tolerances.len()
+    }
+
+    /// Rows one shape of revolution produces (for the progress bar).
     pub fn rows(&self) -> usize {
         2 * self.exact_tolerances.len()
             + self.newton_depths.len() * self.newton_tolerances.len()
@@ -323,12 +333,12 @@ impl<C: Curve<2>> Method for Approximated<C> {
 }
 
 /// The generic Newton intersector at one depth and tolerance.
-struct Newton<C> {
-    solver: NewtonIntersector<Revolution<C>>,
-    tolerance: f64,
+pub struct Newton<S> {
+    pub solver: NewtonIntersector<S>,
+    pub tolerance: f64,
 }
 
-impl<C: Curve<2>> Method for Newton<C> {
+impl<S: BoundedSurface> Method for Newton<S> {
     fn series(&self) -> String {
         format!("revolve Newton, depth {}", self.solver.depth())
     }
@@ -341,7 +351,7 @@ impl<C: Curve<2>> Method for Newton<C> {
 }
 
 /// Builds a method, timing it and counting the heap it holds.
-fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
+pub fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
     let start = Instant::now();
     let (m, bytes) = memory::held_by(build);
     (m, start.elapsed().as_secs_f64(), bytes)
