@@ -10,6 +10,10 @@
 //! The same for a rational profile: a NURBS sphere (`Nurbs::arc`, two
 //! rational quarter arcs) through the exact intersector against the
 //! ray–sphere quadratic, on the same rays, outputs checked to agree.
+//! Tensor-product patches (`intersect_patch_*`): the certified patch search
+//! and the Newton intersector on a gently curved bicubic, a folded bicubic
+//! and the teapot's 32 patches (a loop with a box test per patch), so the
+//! ray–patch cost reads in triangle tests too.
 //!
 //! Each measured iteration is ONE ray from a precomputed set of 1024,
 //! cycled: the median reads as time per ray. Ray sets:
@@ -25,6 +29,8 @@
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "../examples/accuracy_cost/patch_shapes.rs"]
+mod patch_shapes;
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -33,7 +39,8 @@ use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution, Surface,
+    Aabb, BezierSurface, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution,
+    Surface,
 };
 
 const N_RAYS: usize = 1024;
@@ -383,37 +390,86 @@ fn bench_sphere_floor(c: &mut Criterion) {
     group.finish();
 }
 
-/// Tensor-product patches through the subdivision search: a bicubic Bézier
-/// patch with a folded net (rays can cross it up to several times) on random
-/// rays through its box.
+/// A model of Bézier patches ray-cast as a loop over its patches, each
+/// behind a test of its box (no hierarchy), as the benchmarks label it;
+/// `hit` is the per-patch intersector, searched up to the nearest hit so
+/// far.
+fn patch_loop<T>(
+    parts: &[(Aabb, T)],
+    ray: &Ray,
+    hit: impl Fn(&T, &Ray, f64) -> Option<Hit>,
+) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    let mut reach = f64::INFINITY;
+    for (bounds, part) in parts {
+        if bounds.clip(ray, 0.0, reach).is_none() {
+            continue;
+        }
+        if let Some(h) = hit(part, ray, reach) {
+            reach = h.t;
+            best = Some(h);
+        }
+    }
+    best
+}
+
+/// Tensor-product patches: the certified patch search (`Intersect` on
+/// `BezierSurface`) and the Newton intersector (patch-tree depths 6 and
+/// 10) on a gently curved bicubic patch, a folded bicubic (rays can cross it
+/// several times) and Newell's teapot (32 bicubic patches, ray-cast as a
+/// loop over the patches with a box test each: `teapot_patch_loop`), on
+/// random rays through each model's box.
 fn bench_patches(c: &mut Criterion) {
-    let net: Vec<Vec<Point3<f64>>> = (0..4)
-        .map(|i| {
-            (0..4)
-                .map(|j| {
-                    let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
-                    let z = if (i + j) % 2 == 0 { 0.4 } else { -0.4 };
-                    Point3::new(x + 0.3 * (j as f64 - 1.5).powi(2), y, z)
+    let models = [
+        ("bicubic", vec![patch_shapes::gentle_bicubic()]),
+        ("folded", vec![patch_shapes::folded_bicubic()]),
+        ("teapot_patch_loop", patch_shapes::teapot()),
+    ];
+    for (name, patches) in &models {
+        let bounds = patches
+            .iter()
+            .fold(Aabb::EMPTY, |b, p| b.union(&p.bounds()));
+        let rays = box_rays(&bounds, false, 9);
+        let certified: Vec<(Aabb, &BezierSurface)> =
+            patches.iter().map(|p| (p.bounds(), p)).collect();
+        let newton: Vec<(u32, Vec<(Aabb, NewtonIntersector<&BezierSurface>)>)> = NEWTON_DEPTHS
+            .iter()
+            .map(|&depth| {
+                let parts = patches
+                    .iter()
+                    .map(|p| (p.bounds(), NewtonIntersector::new(p, depth)))
+                    .collect();
+                (depth, parts)
+            })
+            .collect();
+        let certified_hit =
+            |ray: &Ray| patch_loop(&certified, ray, |p, r, reach| p.intersect(r, 0.0, reach));
+        let hits = rays.iter().filter(|r| certified_hit(r).is_some()).count();
+        eprintln!("{name}: {hits} of {N_RAYS} rays hit (certified)");
+        let mut group = c.benchmark_group(format!("intersect_patch_{name}"));
+        let mut i = 0;
+        group.bench_function(BenchmarkId::new("certified", "random"), |bench| {
+            bench.iter(|| {
+                i = (i + 1) & MASK;
+                certified_hit(black_box(&rays[i]))
+            })
+        });
+        for (depth, parts) in &newton {
+            let newton_hit =
+                |ray: &Ray| patch_loop(parts, ray, |n, r, reach| n.intersect(r, 0.0, reach));
+            let hits = rays.iter().filter(|r| newton_hit(r).is_some()).count();
+            eprintln!("{name}: {hits} of {N_RAYS} rays hit (Newton, depth {depth})");
+            let mut i = 0;
+            let id = BenchmarkId::new(format!("newton_depth_{depth}"), "random");
+            group.bench_function(id, |bench| {
+                bench.iter(|| {
+                    i = (i + 1) & MASK;
+                    newton_hit(black_box(&rays[i]))
                 })
-                .collect()
-        })
-        .collect();
-    let patch = revolve::BezierSurface::new(net).expect("a valid net");
-    let rays = box_rays(&patch.bounds(), false, 9);
-    let hits = rays
-        .iter()
-        .filter(|r| patch.intersect(r, 0.0, f64::INFINITY).is_some())
-        .count();
-    eprintln!("bicubic patch: {hits} of {N_RAYS} rays hit");
-    let mut group = c.benchmark_group("intersect_patch");
-    let mut i = 0;
-    group.bench_function(BenchmarkId::new("bicubic", "random"), |bench| {
-        bench.iter(|| {
-            i = (i + 1) & MASK;
-            black_box(&patch).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
-        })
-    });
-    group.finish();
+            });
+        }
+        group.finish();
+    }
 }
 
 criterion_group! {

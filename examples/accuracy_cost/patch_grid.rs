@@ -54,7 +54,11 @@ pub fn grid_bound(m: (f64, f64, f64), n_u: usize, n_v: usize) -> f64 {
 
 /// The grid `(n_u, n_v)` of one patch for `tolerance`, with its bound, or
 /// `None` if it would need more than `max_cells` cells.
-pub fn grid_for(patch: &BezierSurface, tolerance: f64, max_cells: usize) -> Option<(usize, usize, f64)> {
+pub fn grid_for(
+    patch: &BezierSurface,
+    tolerance: f64,
+    max_cells: usize,
+) -> Option<(usize, usize, f64)> {
     let m = second_partial_bounds(patch);
     let (mut n_u, mut n_v) = (1usize, 1usize);
     loop {
@@ -108,7 +112,12 @@ pub fn grid_mesh(
         let index = |i: usize, j: usize| (base + i * (n_v + 1) + j) as u32;
         for i in 0..n_u {
             for j in 0..n_v {
-                let (a, b, c, d) = (index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
+                let (a, b, c, d) = (
+                    index(i, j),
+                    index(i + 1, j),
+                    index(i + 1, j + 1),
+                    index(i, j + 1),
+                );
                 for tri in [[a, b, c], [a, c, d]] {
                     let p = |k: usize| positions[tri[k] as usize];
                     if p(0) != p(1) && p(1) != p(2) && p(2) != p(0) {

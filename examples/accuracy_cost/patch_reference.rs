@@ -233,7 +233,10 @@ impl Net {
 
 /// The inverse of the 2 × 2 matrix of midpoints, if it is regular.
 fn inverse_mid(j: &[[Iv; 2]; 2]) -> Option<[[f64; 2]; 2]> {
-    inverse([[j[0][0].mid(), j[0][1].mid()], [j[1][0].mid(), j[1][1].mid()]])
+    inverse([
+        [j[0][0].mid(), j[0][1].mid()],
+        [j[1][0].mid(), j[1][1].mid()],
+    ])
 }
 
 fn inverse(m: [[f64; 2]; 2]) -> Option<[[f64; 2]; 2]> {
@@ -286,13 +289,14 @@ fn preconditioned(a: &[[f64; 2]; 2], c: &Co) -> [Iv; 2] {
 /// Miranda's sign conditions for `A·(f, g)` on the edges of the net's box.
 fn miranda(net: &Net, a: &[[f64; 2]; 2]) -> bool {
     let (m, n) = (net.rows - 1, net.cols - 1);
-    let signs = |k: usize, low: &mut dyn Iterator<Item = Co>, high: &mut dyn Iterator<Item = Co>| {
-        let lo: Vec<Iv> = low.map(|c| preconditioned(a, &c)[k]).collect();
-        let hi: Vec<Iv> = high.map(|c| preconditioned(a, &c)[k]).collect();
-        let below = |v: &[Iv]| v.iter().all(|x| x.hi <= 0.0);
-        let above = |v: &[Iv]| v.iter().all(|x| x.lo >= 0.0);
-        (below(&lo) && above(&hi)) || (above(&lo) && below(&hi))
-    };
+    let signs =
+        |k: usize, low: &mut dyn Iterator<Item = Co>, high: &mut dyn Iterator<Item = Co>| {
+            let lo: Vec<Iv> = low.map(|c| preconditioned(a, &c)[k]).collect();
+            let hi: Vec<Iv> = high.map(|c| preconditioned(a, &c)[k]).collect();
+            let below = |v: &[Iv]| v.iter().all(|x| x.hi <= 0.0);
+            let above = |v: &[Iv]| v.iter().all(|x| x.lo >= 0.0);
+            (below(&lo) && above(&hi)) || (above(&lo) && below(&hi))
+        };
     signs(
         0,
         &mut (0..=n).map(|j| net.at(0, j)),
@@ -415,8 +419,7 @@ impl PatchReference {
     pub fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Answer {
         let (o, d) = (ray.origin, ray.dir);
         let finite = o.iter().chain(d.iter()).all(|x| x.is_finite());
-        if !finite || d == revolve::nalgebra::Vector3::zeros() || t_min.is_nan() || t_max.is_nan()
-        {
+        if !finite || d == revolve::nalgebra::Vector3::zeros() || t_min.is_nan() || t_max.is_nan() {
             return Answer::Ambiguous;
         }
         let k = d.iamax();
@@ -516,10 +519,7 @@ impl PatchReference {
 /// (narrowed by a mean-value contraction).
 fn certify_root(p: &Prepared, item: &Item) -> Option<Iv> {
     let cols = p.net.cols;
-    let (mut u, mut v) = (
-        0.5 * (item.u.0 + item.u.1),
-        0.5 * (item.v.0 + item.v.1),
-    );
+    let (mut u, mut v) = (0.5 * (item.u.0 + item.u.1), 0.5 * (item.v.0 + item.v.1));
     let mut jac = [[0.0; 2]; 2];
     for _ in 0..16 {
         let (f, fu, fv) = eval2(&p.f, cols, u, v);

@@ -155,9 +155,7 @@ pub fn run_patch_shape(
         rows.push(row);
     };
     let patches = &shape.patches;
-    let (mut m, s, b) = built(|| {
-        PatchLoop::new(patches, |p| Certified { patch: p.clone() })
-    });
+    let (mut m, s, b) = built(|| PatchLoop::new(patches, |p| Certified { patch: p.clone() }));
     record(&mut m, s, b);
     for &depth in &plan.newton_depths {
         for &tolerance in &plan.newton_tolerances {

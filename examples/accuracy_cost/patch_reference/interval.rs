@@ -133,7 +133,13 @@ mod tests {
         assert_eq!(down(1.0), 1.0 - f64::EPSILON / 2.0);
         let l = Iv::lerp(Iv::point(1.0), Iv::point(3.0), 0.25);
         assert!(l.lo <= 1.5 && 1.5 <= l.hi);
-        assert!(Iv { lo: 1e-300, hi: 1.0 }.positive());
+        assert!(
+            Iv {
+                lo: 1e-300,
+                hi: 1.0
+            }
+            .positive()
+        );
         assert!(!Iv { lo: 0.0, hi: 1.0 }.positive());
     }
 }
