@@ -390,6 +390,9 @@ fn bench_sphere_floor(c: &mut Criterion) {
     group.finish();
 }
 
+/// Per-patch intersectors, each with its patch's box.
+type PatchParts<T> = Vec<(Aabb, T)>;
+
 /// A model of Bézier patches ray-cast as a loop over its patches, each
 /// behind a test of its box (no hierarchy), as the benchmarks label it;
 /// `hit` is the per-patch intersector, searched up to the nearest hit so
@@ -432,7 +435,7 @@ fn bench_patches(c: &mut Criterion) {
         let rays = box_rays(&bounds, false, 9);
         let certified: Vec<(Aabb, &BezierSurface)> =
             patches.iter().map(|p| (p.bounds(), p)).collect();
-        let newton: Vec<(u32, Vec<(Aabb, NewtonIntersector<&BezierSurface>)>)> = NEWTON_DEPTHS
+        let newton: Vec<(u32, PatchParts<NewtonIntersector<&BezierSurface>>)> = NEWTON_DEPTHS
             .iter()
             .map(|&depth| {
                 let parts = patches

@@ -73,10 +73,13 @@ impl MeshBaseline {
         max_triangles: usize,
     ) -> Option<(Self, MeshBuild)> {
         Self::timed(|| {
-            let (positions, triangles, bound) =
-                patch_grid::grid_mesh(patches, tolerance, max_triangles).ok_or(())?;
+            let mesh = patch_grid::grid_mesh(patches, tolerance, max_triangles).ok_or(())?;
             Ok::<_, ()>(Self::assemble(
-                &positions, triangles, bound, tolerance, "grid",
+                &mesh.positions,
+                mesh.triangles,
+                mesh.bound,
+                tolerance,
+                "grid",
             ))
         })
         .ok()

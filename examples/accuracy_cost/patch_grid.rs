@@ -81,6 +81,14 @@ pub fn grid_for(
     }
 }
 
+/// A triangle mesh and its deviation bound.
+pub struct GridMesh {
+    pub positions: Vec<Point3<f64>>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Every surface point is within `bound` of the mesh.
+    pub bound: f64,
+}
+
 /// A uniform mesh of `patches` within `tolerance`: positions, triangles
 /// (triangles with two equal corners, on collapsed edges, left out) and the
 /// largest bound over the patches. `None` if it would exceed
@@ -89,7 +97,7 @@ pub fn grid_mesh(
     patches: &[BezierSurface],
     tolerance: f64,
     max_triangles: usize,
-) -> Option<(Vec<Point3<f64>>, Vec<[u32; 3]>, f64)> {
+) -> Option<GridMesh> {
     let grids: Vec<(usize, usize, f64)> = patches
         .iter()
         .map(|p| grid_for(p, tolerance, max_triangles / 2))
@@ -127,7 +135,11 @@ pub fn grid_mesh(
             }
         }
     }
-    Some((positions, triangles, bound))
+    Some(GridMesh {
+        positions,
+        triangles,
+        bound,
+    })
 }
 
 #[cfg(test)]
@@ -172,10 +184,10 @@ mod tests {
     #[test]
     fn collapsed_edges_leave_no_degenerate_triangles() {
         let pot = crate::patch_shapes::teapot();
-        let (positions, triangles, bound) = grid_mesh(&pot, 1e-2, 1 << 22).unwrap();
-        assert!(bound <= 1e-2);
-        for t in &triangles {
-            let p = |k: usize| positions[t[k] as usize];
+        let mesh = grid_mesh(&pot, 1e-2, 1 << 22).unwrap();
+        assert!(mesh.bound <= 1e-2);
+        for t in &mesh.triangles {
+            let p = |k: usize| mesh.positions[t[k] as usize];
             assert!((p(1) - p(0)).cross(&(p(2) - p(0))).norm() > 0.0);
         }
         assert!(grid_mesh(&pot, 1e-2, 100).is_none());

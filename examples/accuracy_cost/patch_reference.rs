@@ -135,12 +135,12 @@ impl Net {
     }
 
     fn from_lines(lines: &[Vec<Co>], along_u: bool, rows: usize, cols: usize) -> Net {
-        let mut c = Vec::with_capacity(rows * cols);
-        for i in 0..rows {
-            for j in 0..cols {
-                c.push(if along_u { lines[j][i] } else { lines[i][j] });
-            }
-        }
+        let c = (0..rows * cols)
+            .map(|k| {
+                let (i, j) = (k / cols, k % cols);
+                if along_u { lines[j][i] } else { lines[i][j] }
+            })
+            .collect();
         Net { rows, cols, c }
     }
 

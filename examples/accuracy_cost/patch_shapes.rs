@@ -109,33 +109,3 @@ pub fn parse_patches(text: &str) -> Result<Vec<BezierSurface>, String> {
         })
         .collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use revolve::Surface;
-
-    #[test]
-    fn the_teapot_has_32_bicubic_patches_that_join() {
-        let pot = teapot();
-        assert_eq!(pot.len(), 32);
-        assert!(pot.iter().all(|p| p.degrees() == (3, 3)));
-        // The rim's first patch ends (v = 1) where its neighbour starts.
-        let (a, b) = (&pot[0], &pot[1]);
-        for u in [0.0, 0.3, 1.0] {
-            assert!((a.eval(u, 1.0) - b.eval(u, 0.0)).norm() < 1e-12);
-        }
-    }
-
-    #[test]
-    fn bad_patch_files_are_errors() {
-        assert!(parse_patches("").unwrap_err().contains("patch count"));
-        assert!(parse_patches("1\n1 2").unwrap_err().contains("index 2"));
-        let one = format!("1\n{}\n1\n0 0 0\n", "1 ".repeat(15) + "2");
-        assert!(parse_patches(&one).unwrap_err().contains("index 2 is not"));
-        let bad = format!("1\n{}\n1\n0 x 0\n", "1 ".repeat(16));
-        assert!(parse_patches(&bad).unwrap_err().contains("'x'"));
-        let ok = format!("# c\n1\n{}\n1\n0 0 0\n", "1 ".repeat(16));
-        assert_eq!(parse_patches(&ok).unwrap().len(), 1);
-    }
-}

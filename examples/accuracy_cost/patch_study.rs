@@ -192,6 +192,7 @@ mod tests {
     use crate::common::{kappa, t_tolerance};
     use crate::patch_reference::{Answer, Iv};
     use crate::study::{random_rays, reference_cases};
+    use revolve::Surface;
     use revolve::nalgebra::{Point3, Vector3};
 
     /// The bilinear patch `S(u, v) = (u, v, u·v)` and a ray: the closed form
@@ -332,5 +333,45 @@ mod tests {
         let down = Ray::new(Point3::new(0.1, 0.05, 50.0), -Vector3::z());
         let t = m.nearest(&down, 0.0, 100.0).expect("the lid");
         assert!(t > 45.0 && t < 48.0, "{t}");
+    }
+
+    #[test]
+    fn the_teapot_has_32_bicubic_patches_that_join() {
+        let pot = patch_shapes::teapot();
+        assert_eq!(pot.len(), 32);
+        assert!(pot.iter().all(|p| p.degrees() == (3, 3)));
+        // The rim's first patch ends (v = 1) where its neighbour starts.
+        let (a, b) = (&pot[0], &pot[1]);
+        for u in [0.0, 0.3, 1.0] {
+            assert!((a.eval(u, 1.0) - b.eval(u, 0.0)).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bad_patch_files_are_errors() {
+        assert!(
+            patch_shapes::parse_patches("")
+                .unwrap_err()
+                .contains("patch count")
+        );
+        assert!(
+            patch_shapes::parse_patches("1\n1 2")
+                .unwrap_err()
+                .contains("index 2")
+        );
+        let one = format!("1\n{}\n1\n0 0 0\n", "1 ".repeat(15) + "2");
+        assert!(
+            patch_shapes::parse_patches(&one)
+                .unwrap_err()
+                .contains("index 2 is not")
+        );
+        let bad = format!("1\n{}\n1\n0 x 0\n", "1 ".repeat(16));
+        assert!(
+            patch_shapes::parse_patches(&bad)
+                .unwrap_err()
+                .contains("'x'")
+        );
+        let ok = format!("# c\n1\n{}\n1\n0 0 0\n", "1 ".repeat(16));
+        assert_eq!(patch_shapes::parse_patches(&ok).unwrap().len(), 1);
     }
 }
