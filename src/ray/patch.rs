@@ -569,9 +569,14 @@ const TRY_UNIQUE: f64 = 1.0 / 8.0;
 /// second) and `Y` the inverse of its midpoint,
 /// `K = c − Y·F(c) + (I − Y·J)·([0, 1]² − c)`. If `K` lies strictly inside
 /// the box, the box holds exactly one root of `F` (Krawczyk 1969; Moore,
-/// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2). Every
-/// coefficient carries `bound` of rounding, which widens `F(c)` and `J`;
-/// `K` must clear the box's sides by `1e-6`.
+/// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2); `Y` may
+/// be any matrix, so its own rounding does not matter. The enclosures are
+/// widened for every rounding on the way: each coefficient carries `bound`
+/// (so `F(c)` gains `bound` and `J` `2·degree·bound`), the differences of
+/// `J` and the averages of `F(c)` (`p + q` levels) their own rounding, and
+/// `K`'s sums and products `4ε` times the sum of their terms' magnitudes
+/// (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.1).
+/// Beyond that, `K` must clear the box's sides by `1e-6`.
 // Index loops mirror the matrix formulas.
 #[allow(clippy::needless_range_loop)]
 fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
@@ -608,7 +613,8 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
                 *r = (0.0, 0.0);
             }
             let pad = 2.0 * degree as f64 * bound;
-            *r = (r.0 - pad, r.1 + pad);
+            let own = 2.0 * f64::EPSILON * r.0.abs().max(r.1.abs());
+            *r = (r.0 - pad - own, r.1 + pad + own);
         }
     }
     // F at the centre: de Casteljau at ½ in both parameters.
@@ -616,6 +622,11 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
         return false;
     }
     let mut centre = [0.0_f64; 2];
+    // Averages round by at most ε/2 of the largest coefficient each.
+    let largest = coef
+        .iter()
+        .fold(0.0_f64, |m, c| m.max(c[0].abs()).max(c[1].abs()));
+    let f_bound = bound + 0.5 * (p + q) as f64 * f64::EPSILON * largest;
     for (f, value) in centre.iter_mut().enumerate() {
         let mut row_values = [0.0_f64; 32];
         for (i, slot) in row_values.iter_mut().enumerate().take(p + 1) {
@@ -641,9 +652,11 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
         [-m[1][0] / det, m[0][0] / det],
     ];
     for i in 0..2 {
-        // c − Y F(c), with F(c) ± bound.
+        // c − Y F(c), with F(c) ± f_bound.
         let yf = y[i][0] * centre[0] + y[i][1] * centre[1];
-        let mut radius = (y[i][0].abs() + y[i][1].abs()) * bound;
+        let mut radius = (y[i][0].abs() + y[i][1].abs()) * f_bound;
+        // Magnitudes of the terms summed, for their rounding.
+        let mut terms = (y[i][0] * centre[0]).abs() + (y[i][1] * centre[1]).abs() + 0.5;
         // (I − Y J)(x − c), x − c ∈ [−½, ½]².
         for k in 0..2 {
             let identity = if i == k { 1.0 } else { 0.0 };
@@ -653,10 +666,13 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
                 let (a, b) = (y[i][j] * jac[j][k].0, y[i][j] * jac[j][k].1);
                 lo += a.min(b);
                 hi += a.max(b);
+                terms += a.abs().max(b.abs());
             }
             let magnitude = (identity - lo).abs().max((identity - hi).abs());
             radius += 0.5 * magnitude;
+            terms += magnitude;
         }
+        radius += 4.0 * f64::EPSILON * (terms + radius);
         let centre_i = 0.5 - yf;
         if !(centre_i - radius > 1e-6 && centre_i + radius < 1.0 - 1e-6) {
             return false;
