@@ -12,8 +12,9 @@
 //! ray–sphere quadratic, on the same rays, outputs checked to agree.
 //! Tensor-product patches (`intersect_patch_*`): the certified patch search
 //! and the Newton intersector on a gently curved bicubic, a folded bicubic
-//! and the teapot's 32 patches (a loop with a box test per patch), so the
-//! ray–patch cost reads in triangle tests too.
+//! and the teapot's 32 patches (certified through `BezierPatches`' hierarchy,
+//! Newton as a loop with a box test per patch), so the ray–patch cost reads
+//! in triangle tests too.
 //!
 //! Each measured iteration is ONE ray from a precomputed set of 1024,
 //! cycled: the median reads as time per ray. Ray sets:
@@ -39,8 +40,8 @@ use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BezierSurface, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution,
-    Surface,
+    Aabb, BezierPatches, BezierSurface, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector,
+    Ray, Revolution, Surface,
 };
 
 const N_RAYS: usize = 1024;
@@ -394,14 +395,17 @@ fn bench_sphere_floor(c: &mut Criterion) {
 type PatchParts<T> = Vec<(Aabb, T)>;
 
 /// A model of Bézier patches ray-cast as a loop over its patches, each
-/// behind a test of its box (no hierarchy), as the benchmarks label it;
-/// `hit` is the per-patch intersector, searched up to the nearest hit so
-/// far.
+/// behind a test of its box (no hierarchy); `hit` is the per-patch
+/// intersector, searched up to the nearest hit so far. One patch is
+/// intersected directly.
 fn patch_loop<T>(
     parts: &[(Aabb, T)],
     ray: &Ray,
     hit: impl Fn(&T, &Ray, f64) -> Option<Hit>,
 ) -> Option<Hit> {
+    if let [(_, only)] = parts {
+        return hit(only, ray, f64::INFINITY);
+    }
     let mut best: Option<Hit> = None;
     let mut reach = f64::INFINITY;
     for (bounds, part) in parts {
@@ -416,25 +420,30 @@ fn patch_loop<T>(
     best
 }
 
-/// Tensor-product patches: the certified patch search (`Intersect` on
-/// `BezierSurface`) and the Newton intersector (patch-tree depths 6 and
-/// 10) on a gently curved bicubic patch, a folded bicubic (rays can cross it
-/// several times) and Newell's teapot (32 bicubic patches, ray-cast as a
-/// loop over the patches with a box test each: `teapot_patch_loop`), on
-/// random rays through each model's box.
+/// Tensor-product patches: the certified patch search and the Newton
+/// intersector (patch-tree depths 6 and 10) on a gently curved bicubic
+/// patch, a folded bicubic (rays can cross it several times) and Newell's
+/// teapot (32 bicubic patches: the certified search through
+/// `BezierPatches`' hierarchy, `certified_bvh`; Newton as a loop over the
+/// patches with a box test each, `newton_depth_*_patch_loop`), on random
+/// rays through each model's box.
 fn bench_patches(c: &mut Criterion) {
-    let models = [
-        ("bicubic", vec![patch_shapes::gentle_bicubic()]),
-        ("folded", vec![patch_shapes::folded_bicubic()]),
-        ("teapot_patch_loop", patch_shapes::teapot()),
+    let teapot = common::teapot::patches();
+    let teapot_model = BezierPatches::new(teapot.clone()).expect("32 patches");
+    let gentle = patch_shapes::gentle_bicubic();
+    let folded = patch_shapes::folded_bicubic();
+    let models: [(&str, Vec<BezierSurface>, &dyn Intersect); 3] = [
+        ("bicubic", vec![gentle.clone()], &gentle),
+        ("folded", vec![folded.clone()], &folded),
+        ("teapot", teapot, &teapot_model),
     ];
-    for (name, patches) in &models {
-        let bounds = patches
-            .iter()
-            .fold(Aabb::EMPTY, |b, p| b.union(&p.bounds()));
-        let rays = box_rays(&bounds, false, 9);
-        let certified: Vec<(Aabb, &BezierSurface)> =
-            patches.iter().map(|p| (p.bounds(), p)).collect();
+    for (name, patches, certified) in &models {
+        let (suffix, loop_suffix) = if patches.len() > 1 {
+            ("_bvh", "_patch_loop")
+        } else {
+            ("", "")
+        };
+        let rays = box_rays(&certified.bounds(), false, 9);
         let newton: Vec<(u32, PatchParts<NewtonIntersector<&BezierSurface>>)> = NEWTON_DEPTHS
             .iter()
             .map(|&depth| {
@@ -445,16 +454,18 @@ fn bench_patches(c: &mut Criterion) {
                 (depth, parts)
             })
             .collect();
-        let certified_hit =
-            |ray: &Ray| patch_loop(&certified, ray, |p, r, reach| p.intersect(r, 0.0, reach));
-        let hits = rays.iter().filter(|r| certified_hit(r).is_some()).count();
+        let hits = rays
+            .iter()
+            .filter(|r| certified.intersect(r, 0.0, f64::INFINITY).is_some())
+            .count();
         eprintln!("{name}: {hits} of {N_RAYS} rays hit (certified)");
         let mut group = c.benchmark_group(format!("intersect_patch_{name}"));
         let mut i = 0;
-        group.bench_function(BenchmarkId::new("certified", "random"), |bench| {
+        let id = BenchmarkId::new(format!("certified{suffix}"), "random");
+        group.bench_function(id, |bench| {
             bench.iter(|| {
                 i = (i + 1) & MASK;
-                certified_hit(black_box(&rays[i]))
+                black_box(*certified).intersect(black_box(&rays[i]), 0.0, f64::INFINITY)
             })
         });
         for (depth, parts) in &newton {
@@ -463,7 +474,7 @@ fn bench_patches(c: &mut Criterion) {
             let hits = rays.iter().filter(|r| newton_hit(r).is_some()).count();
             eprintln!("{name}: {hits} of {N_RAYS} rays hit (Newton, depth {depth})");
             let mut i = 0;
-            let id = BenchmarkId::new(format!("newton_depth_{depth}"), "random");
+            let id = BenchmarkId::new(format!("newton_depth_{depth}{loop_suffix}"), "random");
             group.bench_function(id, |bench| {
                 bench.iter(|| {
                     i = (i + 1) & MASK;

@@ -183,7 +183,7 @@ mod tests {
 
     #[test]
     fn collapsed_edges_leave_no_degenerate_triangles() {
-        let pot = crate::patch_shapes::teapot();
+        let pot = crate::common::teapot::patches();
         let mesh = grid_mesh(&pot, 1e-2, 1 << 22).unwrap();
         assert!(mesh.bound <= 1e-2);
         for t in &mesh.triangles {

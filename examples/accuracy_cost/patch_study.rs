@@ -11,8 +11,10 @@
 //!   one parry `TriMesh`, at the plan's mesh tolerances (absolute; meshes
 //!   over [`MAX_TRIANGLES`] are skipped).
 //!
-//! The teapot is ray-cast as a loop over its patches, each behind a test of
-//! its box ([`PatchLoop`]); the meshes are one `TriMesh` of all patches.
+//! The certified intersector ray-casts the teapot as a [`BezierPatches`]
+//! (a hierarchy over the patches' boxes); Newton and the course method as a
+//! loop over its patches, each behind a test of its box ([`PatchLoop`]);
+//! the meshes are one `TriMesh` of all patches.
 
 use crate::course::CourseNewton;
 use crate::mesh_baseline::MeshBaseline;
@@ -20,7 +22,7 @@ use crate::model::{Method, Row};
 use crate::patch_reference::PatchReference;
 use crate::patch_shapes;
 use crate::study::{Cases, Newton, Plan, built, measure};
-use revolve::{Aabb, BezierSurface, Intersect, NewtonIntersector, Ray, Tolerance};
+use revolve::{Aabb, BezierPatches, BezierSurface, Intersect, NewtonIntersector, Ray, Tolerance};
 
 /// Meshes with more triangles are not built (memory on a shared machine).
 pub const MAX_TRIANGLES: usize = 2_500_000;
@@ -61,28 +63,30 @@ pub fn folded_patch() -> PatchShape {
     }
 }
 
-/// Newell's teapot.
+/// Newell's teapot (`scenes/data/teapot.txt`).
 pub fn teapot() -> PatchShape {
     PatchShape {
         name: "teapot",
-        patches: patch_shapes::teapot(),
+        patches: crate::common::teapot::patches(),
     }
 }
 
-/// revolve's certified intersector on one patch.
-pub struct Certified {
-    patch: BezierSurface,
+/// revolve's certified intersector on a patch ([`BezierSurface`]) or a model
+/// of many ([`BezierPatches`], through its hierarchy).
+pub struct Certified<M> {
+    model: M,
+    knob: String,
 }
 
-impl Method for Certified {
+impl<M: Intersect> Method for Certified<M> {
     fn series(&self) -> String {
         "revolve certified".to_string()
     }
     fn knob(&self) -> String {
-        "default tol".to_string()
+        self.knob.clone()
     }
     fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-        self.patch.intersect(ray, t_min, t_max).map(|h| h.t)
+        self.model.intersect(ray, t_min, t_max).map(|h| h.t)
     }
 }
 
@@ -155,8 +159,19 @@ pub fn run_patch_shape(
         rows.push(row);
     };
     let patches = &shape.patches;
-    let (mut m, s, b) = built(|| PatchLoop::new(patches, |p| Certified { patch: p.clone() }));
-    record(&mut m, s, b);
+    if let [patch] = patches.as_slice() {
+        let (mut m, s, b) = built(|| Certified {
+            model: patch.clone(),
+            knob: "default tol".to_string(),
+        });
+        record(&mut m, s, b);
+    } else {
+        let (mut m, s, b) = built(|| Certified {
+            model: BezierPatches::new(patches.clone()).expect("a non-empty model"),
+            knob: format!("default tol, BVH over {} patches", patches.len()),
+        });
+        record(&mut m, s, b);
+    }
     for &depth in &plan.newton_depths {
         for &tolerance in &plan.newton_tolerances {
             let (mut m, s, b) = built(|| {
@@ -315,7 +330,8 @@ mod tests {
         assert_eq!(rows.len(), plan.patch_rows());
         let certified = &rows[0];
         assert_eq!(certified.series, "revolve certified");
-        assert!(certified.knob.contains("loop over 32 boxes"));
+        assert!(certified.knob.contains("BVH over 32 patches"));
+        assert!(rows[1].knob.contains("loop over 32 boxes"));
         assert_eq!(certified.errors.miss_rate, 0.0);
         assert_eq!(certified.errors.false_hit_rate, 0.0);
         assert_eq!(certified.errors.far_hit_rate, 0.0);
@@ -327,7 +343,10 @@ mod tests {
     #[test]
     fn a_ray_along_no_box_meets_nothing() {
         let shape = teapot();
-        let mut m = PatchLoop::new(&shape.patches, |p| Certified { patch: p.clone() });
+        let mut m = PatchLoop::new(&shape.patches, |p| Certified {
+            model: p.clone(),
+            knob: String::new(),
+        });
         let away = Ray::new(Point3::new(0.0, 0.0, 50.0), Vector3::z());
         assert_eq!(m.nearest(&away, 0.0, 100.0), None);
         let down = Ray::new(Point3::new(0.1, 0.05, 50.0), -Vector3::z());
@@ -337,7 +356,7 @@ mod tests {
 
     #[test]
     fn the_teapot_has_32_bicubic_patches_that_join() {
-        let pot = patch_shapes::teapot();
+        let pot = teapot().patches;
         assert_eq!(pot.len(), 32);
         assert!(pot.iter().all(|p| p.degrees() == (3, 3)));
         // The rim's first patch ends (v = 1) where its neighbour starts.
@@ -345,33 +364,5 @@ mod tests {
         for u in [0.0, 0.3, 1.0] {
             assert!((a.eval(u, 1.0) - b.eval(u, 0.0)).norm() < 1e-12);
         }
-    }
-
-    #[test]
-    fn bad_patch_files_are_errors() {
-        assert!(
-            patch_shapes::parse_patches("")
-                .unwrap_err()
-                .contains("patch count")
-        );
-        assert!(
-            patch_shapes::parse_patches("1\n1 2")
-                .unwrap_err()
-                .contains("index 2")
-        );
-        let one = format!("1\n{}\n1\n0 0 0\n", "1 ".repeat(15) + "2");
-        assert!(
-            patch_shapes::parse_patches(&one)
-                .unwrap_err()
-                .contains("index 2 is not")
-        );
-        let bad = format!("1\n{}\n1\n0 x 0\n", "1 ".repeat(16));
-        assert!(
-            patch_shapes::parse_patches(&bad)
-                .unwrap_err()
-                .contains("'x'")
-        );
-        let ok = format!("# c\n1\n{}\n1\n0 0 0\n", "1 ".repeat(16));
-        assert_eq!(patch_shapes::parse_patches(&ok).unwrap().len(), 1);
     }
 }

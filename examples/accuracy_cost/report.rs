@@ -273,16 +273,17 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
         md,
         "## Bézier patches\n\n\
          A gently curved bicubic patch, a folded bicubic (rays cross it up to several \
-         times) and Newell's teapot (32 bicubic patches, `scenes/teapot.txt`). The \
+         times) and Newell's teapot (32 bicubic patches, `scenes/data/teapot.txt`). The \
          reference is `patch_reference.rs`: subdivision of the ray's two plane distances \
          in interval arithmetic rounded outward, a root proven by Miranda's theorem on a \
          small box around Newton's point inside a box where the preconditioned Jacobian \
          proves the map injective (at most one root), its `t` narrowed by a mean-value \
          step; it shares no code with revolve's intersectors (only the control points), \
          and its `t` is known to a few 1e-16 of the object's size. revolve's certified \
-         patch intersector has no tolerance knob: one row at its default. The teapot is \
-         ray-cast by every method as a loop over its 32 patches, each behind a test of \
-         its box (no hierarchy). The meshes are uniform grids per patch whose \
+         patch intersector has no tolerance knob: one row at its default; it ray-casts \
+         the teapot as a `BezierPatches` (a hierarchy over the patches' boxes), Newton \
+         and the course method as a loop over its 32 patches, each behind a test of its \
+         box. The meshes are uniform grids per patch whose \
          second-derivative bound (`patch_grid.rs`) is within the absolute tolerance, as \
          one parry `TriMesh`; meshes over {} triangles are not built. The course method \
          starts `u` and `v` uniformly (a patch has no axis) and never accepts hits within \
@@ -339,7 +340,7 @@ mod tests {
         assert!(md.contains("| wine glass | parry TriMesh |"));
         assert!(md.contains("| NURBS sphere | revolve exact | tol 1e-14 |"));
         assert!(md.contains("| NURBS torus | parry TriMesh |"));
-        assert!(md.contains("| teapot | revolve certified | default tol, loop over 32 boxes |"));
+        assert!(md.contains("| teapot | revolve certified | default tol, BVH over 32 patches |"));
         assert!(md.contains("| folded patch | parry TriMesh | grid 1e-2"));
         let svg = std::fs::read_to_string(dir.join("intersection_patches.svg")).unwrap();
         assert!(svg.contains("teapot") && !svg.contains("NaN"));
