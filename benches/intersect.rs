@@ -431,7 +431,7 @@ fn bench_patches(c: &mut Criterion) {
     let teapot = common::teapot::patches();
     let teapot_model = BezierPatches::new(teapot.clone()).expect("32 patches");
     let gentle = patch_shapes::gentle_bicubic();
-    let folded = patch_shapes::folded_bicubic();
+    let folded = common::tensor_shapes::folded_bicubic();
     let models: [(&str, Vec<BezierSurface>, &dyn Intersect); 3] = [
         ("bicubic", vec![gentle.clone()], &gentle),
         ("folded", vec![folded.clone()], &folded),

@@ -153,7 +153,7 @@ mod tests {
     /// distance from above; the parametric bound must exceed the true one).
     #[test]
     fn the_grid_bound_holds_and_shrinks_with_the_tolerance() {
-        let patch = crate::patch_shapes::folded_bicubic();
+        let patch = crate::common::tensor_shapes::folded_bicubic();
         let (n_u, n_v, bound) = grid_for(&patch, 1e-2, 1 << 20).unwrap();
         assert!(bound <= 1e-2);
         let mut rng = Rng(3);

@@ -59,7 +59,7 @@ pub fn bicubic_patch() -> PatchShape {
 pub fn folded_patch() -> PatchShape {
     PatchShape {
         name: "folded patch",
-        patches: vec![patch_shapes::folded_bicubic()],
+        patches: vec![crate::common::tensor_shapes::folded_bicubic()],
     }
 }
 
