@@ -1,0 +1,318 @@
+//! The independent patch reference (`common::patch_reference`: interval
+//! subdivision of the power form, Newton's method on explicit Bernstein
+//! sums) checked against closed forms, then the library's certified
+//! intersector checked against the reference on random bicubic and rational
+//! bicubic patches, folded ones included: every hit along each ray, in
+//! count and order, by walking secondary rays from each hit.
+
+mod common;
+
+use common::Rng;
+use common::patch_reference::{
+    RefHits, RefPatch, bezier_hits, check_patch_hit, hits_on, nurbs_hits, walk_hits,
+};
+use common::tensor_shapes::{
+    cylinder_roots, quadratic_roots, quarter_cylinder, sphere_octant, sphere_roots,
+};
+use revolve::nalgebra::Point3;
+use revolve::{BezierSurface, Intersect, NurbsSurface, Ray};
+
+/// Compares the reference's roots in `(0, ∞)` with closed-form roots `want`
+/// (`t` ascending): same count, `t` within `1e-10·size/|d|`.
+fn assert_reference_roots(got: &RefHits, want: &[f64], ray: &Ray, size: f64, what: &str) {
+    let got = got.within(0.0, f64::INFINITY);
+    assert_eq!(
+        got.len(),
+        want.len(),
+        "{what}: reference {got:?}, closed form {want:?} for {ray:?}"
+    );
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            (g.t - w).abs() * ray.dir.norm() <= 1e-10 * size,
+            "{what}: reference t {} vs {w} for {ray:?}",
+            g.t
+        );
+        assert!((ray.at(g.t) - g.point).norm() <= 1e-10 * size);
+    }
+}
+
+/// A ray from a random point at distance `4·size` toward a random point of
+/// the box `[lo, hi]³`, its length scaled by a random factor.
+fn random_ray(rng: &mut Rng, size: f64, lo: f64, hi: f64) -> Ray {
+    let origin = Point3::from(rng.direction() * 4.0 * size);
+    let target = rng.point([lo; 3], [hi; 3]);
+    Ray::new(origin, (target - origin) * rng.range(0.3, 3.0))
+}
+
+/// The reference on the NURBS sphere octant finds the roots of the
+/// ray–sphere quadratic that lie in the octant (rays within `1e-7` of the
+/// octant's edges or of tangency skipped: either answer is right there).
+#[test]
+fn reference_finds_the_sphere_octant_roots() {
+    let mut rng = Rng(0x5F0);
+    let (mut checked, mut roots) = (0, 0);
+    for r in [1e-3, 1.0, 1e3] {
+        let s = sphere_octant(r);
+        for _ in 0..300 {
+            let ray = random_ray(&mut rng, r, -0.1 * r, 1.1 * r);
+            let (all, disc) = sphere_roots(r, &ray.origin, &ray.dir);
+            let mut near = disc.abs() < 1e-8;
+            let mut want = Vec::new();
+            for t in all {
+                let p = ray.at(t);
+                near |= p.coords.min().abs() < 1e-7 * r;
+                if t > 0.0 && p.coords.min() >= 0.0 {
+                    want.push(t);
+                }
+            }
+            if near {
+                continue;
+            }
+            let got = nurbs_hits(&s, &ray);
+            assert!(!got.doubtful, "doubtful on {ray:?}");
+            assert_reference_roots(&got, &want, &ray, r, "sphere octant");
+            checked += 1;
+            roots += want.len();
+        }
+    }
+    assert!(checked > 850 && roots > 300, "{checked} rays, {roots} roots");
+}
+
+/// The reference on the NURBS quarter cylinder (radius 1, height 2) finds
+/// the roots of the ray–cylinder quadratic in the quarter and the height.
+#[test]
+fn reference_finds_the_quarter_cylinder_roots() {
+    let mut rng = Rng(0xC71);
+    let s = quarter_cylinder(1.0, 2.0);
+    let (mut checked, mut roots) = (0, 0);
+    for _ in 0..600 {
+        let ray = random_ray(&mut rng, 1.0, -0.1, 2.1);
+        let (all, disc) = cylinder_roots(1.0, &ray.origin, &ray.dir);
+        let mut near = disc.abs() < 1e-8;
+        let mut want = Vec::new();
+        for t in all {
+            let p = ray.at(t);
+            let m = p.x.min(p.y).min(p.z).min(2.0 - p.z);
+            near |= m.abs() < 1e-7;
+            if t > 0.0 && m >= 0.0 {
+                want.push(t);
+            }
+        }
+        if near {
+            continue;
+        }
+        let got = nurbs_hits(&s, &ray);
+        assert!(!got.doubtful, "doubtful on {ray:?}");
+        assert_reference_roots(&got, &want, &ray, 2.0, "quarter cylinder");
+        checked += 1;
+        roots += want.len();
+    }
+    assert!(checked > 550 && roots > 200, "{checked} rays, {roots} roots");
+}
+
+/// The reference on the hyperbolic paraboloid `z = xy` over `[0, 1]²` (the
+/// bilinear patch of corners `(0,0,0)`, `(1,0,0)`, `(0,1,0)`, `(1,1,1)`):
+/// along the ray, `o_z + t·d_z = (o_x + t·d_x)(o_y + t·d_y)`, a quadratic.
+#[test]
+fn reference_finds_the_hyperbolic_paraboloid_roots() {
+    let mut rng = Rng(0x4A7);
+    let net = vec![
+        vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+        vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+    ];
+    let patch = RefPatch::polynomial(net);
+    let (mut checked, mut two) = (0, 0);
+    for _ in 0..3000 {
+        let ray = random_ray(&mut rng, 1.0, -0.1, 1.1);
+        let (o, d) = (ray.origin, ray.dir);
+        let (all, disc) = quadratic_roots(
+            d.x * d.y,
+            o.x * d.y + o.y * d.x - d.z,
+            o.x * o.y - o.z,
+        );
+        let mut near = disc.abs() < 1e-8;
+        let mut want = Vec::new();
+        for t in all {
+            let p = ray.at(t);
+            let m = p.x.min(p.y).min(1.0 - p.x).min(1.0 - p.y);
+            near |= m.abs() < 1e-7;
+            if t > 0.0 && m >= 0.0 {
+                want.push(t);
+            }
+        }
+        if near {
+            continue;
+        }
+        let got = hits_on(std::slice::from_ref(&patch), &ray);
+        assert!(!got.doubtful, "doubtful on {ray:?}");
+        assert_reference_roots(&got, &want, &ray, 1.0, "z = xy");
+        checked += 1;
+        two += usize::from(want.len() == 2);
+    }
+    assert!(checked > 2900 && two > 8, "{checked} rays, {two} with two roots");
+}
+
+/// Random bicubic control nets of three kinds, all folded so that rays meet
+/// them several times: `0` every point uniform in `[−1, 1]³`; `1` a height
+/// field over `[−1, 1]²` with heights in `[−1.5, 1.5]`; `2` an S-fold (the
+/// rows' `x` runs −1, 1, −1, 1 plus noise, so lines along `x` cross it up to
+/// three times).
+fn folded_net(rng: &mut Rng, kind: usize) -> Vec<Vec<Point3<f64>>> {
+    (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let (a, b) = (i as f64 / 3.0 * 2.0 - 1.0, j as f64 / 3.0 * 2.0 - 1.0);
+                    match kind {
+                        0 => rng.point([-1.0; 3], [1.0; 3]),
+                        1 => Point3::new(a, b, rng.range(-1.5, 1.5)),
+                        _ => {
+                            let x = if i % 2 == 0 { -1.0 } else { 1.0 };
+                            Point3::new(
+                                x + rng.range(-0.2, 0.2),
+                                b + rng.range(-0.2, 0.2),
+                                a + rng.range(-0.3, 0.3),
+                            )
+                        }
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Tallies of a comparison run.
+#[derive(Debug, Default)]
+struct Tally {
+    rays: usize,
+    excluded: usize,
+    /// Rays by their number of hits (4 = four or more).
+    by_count: [usize; 5],
+}
+
+/// Compares the intersector with the reference on one ray: unless the
+/// reference flags the ray (doubtful, a root within `1e-4` of tangency or
+/// `1e-7` of a patch edge, two roots within `1e-7·size`), the walk of
+/// secondary rays finds exactly the reference's roots in `(0, ∞)`, in order,
+/// `t` within `1e-9·size/|d|` and `(u, v)` within `1e-6`.
+fn compare<S: revolve::Surface + Intersect>(
+    s: &S,
+    want: &RefHits,
+    ray: &Ray,
+    size: f64,
+    tally: &mut Tally,
+) {
+    tally.rays += 1;
+    let dn = ray.dir.norm();
+    if !want.clear(0.0, f64::INFINITY, 1e-4, 1e-7 * size / dn) {
+        tally.excluded += 1;
+        return;
+    }
+    let want = want.within(0.0, f64::INFINITY);
+    let got = walk_hits(s, ray, 0.0, f64::INFINITY, 12);
+    let ts = |v: Vec<f64>| format!("{v:?}");
+    assert_eq!(
+        got.len(),
+        want.len(),
+        "hits at t = {} but the reference has {} for {ray:?}",
+        ts(got.iter().map(|h| h.t).collect()),
+        ts(want.iter().map(|h| h.t).collect()),
+    );
+    for (g, w) in got.iter().zip(&want) {
+        check_patch_hit(s, ray, g, 0.0, f64::INFINITY);
+        assert!(
+            (g.t - w.t).abs() * dn <= 1e-9 * size,
+            "t {} vs reference {} for {ray:?}",
+            g.t,
+            w.t
+        );
+        assert!(
+            (g.uv.0 - w.u).abs() <= 1e-6 && (g.uv.1 - w.v).abs() <= 1e-6,
+            "uv {:?} vs reference ({}, {}) for {ray:?}",
+            g.uv,
+            w.u,
+            w.v
+        );
+    }
+    tally.by_count[want.len().min(4)] += 1;
+}
+
+/// Random folded bicubic patches against the reference: rays from afar at
+/// points of the patch (sure hits), at random points of its box, and
+/// (height fields) nearly horizontal rays that cross the waves several
+/// times. At most 2% of the rays are left out as near-tangent or
+/// near-edge, and many rays meet their patch two, three and four times.
+#[test]
+fn folded_bicubics_agree_with_the_reference_hit_by_hit() {
+    let mut rng = Rng(0xF01D);
+    let mut tally = Tally::default();
+    for n in 0..180 {
+        let kind = n % 3;
+        let net = folded_net(&mut rng, kind);
+        let s = BezierSurface::new(net.clone()).unwrap();
+        let reference = RefPatch::polynomial(net);
+        let size = reference.size();
+        for k in 0..14 {
+            let ray = match (kind, k % 3) {
+                (1, 2) => {
+                    let a = rng.range(0.0, std::f64::consts::TAU);
+                    let origin = Point3::new(4.0 * a.cos(), 4.0 * a.sin(), rng.range(-0.5, 0.5));
+                    let target = rng.point([-0.8, -0.8, -0.5], [0.8, 0.8, 0.5]);
+                    Ray::new(origin, target - origin)
+                }
+                (_, 0) => {
+                    let origin = Point3::from(rng.direction() * 4.0);
+                    let (x, _, _) = reference.jet(rng.unit(), rng.unit());
+                    Ray::new(origin, (Point3::from(x) - origin) * rng.range(0.3, 3.0))
+                }
+                _ => random_ray(&mut rng, 1.0, -1.2, 1.2),
+            };
+            let want = bezier_hits(&s, &ray);
+            compare(&s, &want, &ray, size, &mut tally);
+        }
+    }
+    let Tally {
+        rays,
+        excluded,
+        by_count,
+    } = tally;
+    eprintln!("{rays} rays, {excluded} excluded, by hit count {by_count:?}");
+    assert!(excluded * 50 < rays, "{excluded} of {rays} rays excluded");
+    assert!(
+        by_count[1] > 600 && by_count[2] > 200 && by_count[3] > 50 && by_count[4] > 10,
+        "hit counts {by_count:?}"
+    );
+}
+
+/// Random rational bicubic patches (weights in `[0.3, 3]`) on folded nets
+/// against the reference, through `NurbsSurface` (one Bézier piece).
+#[test]
+fn rational_bicubics_agree_with_the_reference_hit_by_hit() {
+    let mut rng = Rng(0x7A71);
+    let mut tally = Tally::default();
+    let k = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    for n in 0..90 {
+        let net = folded_net(&mut rng, n % 3);
+        let weights: Vec<Vec<f64>> = (0..4)
+            .map(|_| (0..4).map(|_| rng.range(0.3, 3.0)).collect())
+            .collect();
+        let s = NurbsSurface::new((3, 3), (k.clone(), k.clone()), net.clone(), weights).unwrap();
+        let size = RefPatch::polynomial(net).size();
+        for _ in 0..10 {
+            let ray = random_ray(&mut rng, 1.0, -1.2, 1.2);
+            let want = nurbs_hits(&s, &ray);
+            compare(&s, &want, &ray, size, &mut tally);
+        }
+    }
+    let Tally {
+        rays,
+        excluded,
+        by_count,
+    } = tally;
+    eprintln!("{rays} rays, {excluded} excluded, by hit count {by_count:?}");
+    assert!(excluded * 50 < rays, "{excluded} of {rays} rays excluded");
+    assert!(
+        by_count[1] > 200 && by_count[2] > 20 && by_count[3] > 3,
+        "hit counts {by_count:?}"
+    );
+}
