@@ -9,13 +9,13 @@ mod common;
 
 use common::Rng;
 use common::patch_reference::{
-    RefHits, RefPatch, bezier_hits, check_patch_hit, hits_on, nurbs_hits, walk_hits,
+    RefHits, RefPatch, Tally, bezier_hits, compare, folded_net, hits_on, nurbs_hits, random_ray,
 };
 use common::tensor_shapes::{
     cylinder_roots, quadratic_roots, quarter_cylinder, sphere_octant, sphere_roots,
 };
 use revolve::nalgebra::Point3;
-use revolve::{BezierSurface, Intersect, NurbsSurface, Ray};
+use revolve::{BezierSurface, NurbsSurface, Ray};
 
 /// Compares the reference's roots in `(0, ∞)` with closed-form roots `want`
 /// (`t` ascending): same count, `t` within `1e-10·size/|d|`.
@@ -34,14 +34,6 @@ fn assert_reference_roots(got: &RefHits, want: &[f64], ray: &Ray, size: f64, wha
         );
         assert!((ray.at(g.t) - g.point).norm() <= 1e-10 * size);
     }
-}
-
-/// A ray from a random point at distance `4·size` toward a random point of
-/// the box `[lo, hi]³`, its length scaled by a random factor.
-fn random_ray(rng: &mut Rng, size: f64, lo: f64, hi: f64) -> Ray {
-    let origin = Point3::from(rng.direction() * 4.0 * size);
-    let target = rng.point([lo; 3], [hi; 3]);
-    Ray::new(origin, (target - origin) * rng.range(0.3, 3.0))
 }
 
 /// The reference on the NURBS sphere octant finds the roots of the
@@ -75,7 +67,10 @@ fn reference_finds_the_sphere_octant_roots() {
             roots += want.len();
         }
     }
-    assert!(checked > 850 && roots > 300, "{checked} rays, {roots} roots");
+    assert!(
+        checked > 850 && roots > 300,
+        "{checked} rays, {roots} roots"
+    );
 }
 
 /// The reference on the NURBS quarter cylinder (radius 1, height 2) finds
@@ -107,7 +102,10 @@ fn reference_finds_the_quarter_cylinder_roots() {
         checked += 1;
         roots += want.len();
     }
-    assert!(checked > 550 && roots > 200, "{checked} rays, {roots} roots");
+    assert!(
+        checked > 550 && roots > 200,
+        "{checked} rays, {roots} roots"
+    );
 }
 
 /// The reference on the hyperbolic paraboloid `z = xy` over `[0, 1]²` (the
@@ -125,11 +123,7 @@ fn reference_finds_the_hyperbolic_paraboloid_roots() {
     for _ in 0..3000 {
         let ray = random_ray(&mut rng, 1.0, -0.1, 1.1);
         let (o, d) = (ray.origin, ray.dir);
-        let (all, disc) = quadratic_roots(
-            d.x * d.y,
-            o.x * d.y + o.y * d.x - d.z,
-            o.x * o.y - o.z,
-        );
+        let (all, disc) = quadratic_roots(d.x * d.y, o.x * d.y + o.y * d.x - d.z, o.x * o.y - o.z);
         let mut near = disc.abs() < 1e-8;
         let mut want = Vec::new();
         for t in all {
@@ -149,92 +143,10 @@ fn reference_finds_the_hyperbolic_paraboloid_roots() {
         checked += 1;
         two += usize::from(want.len() == 2);
     }
-    assert!(checked > 2900 && two > 8, "{checked} rays, {two} with two roots");
-}
-
-/// Random bicubic control nets of three kinds, all folded so that rays meet
-/// them several times: `0` every point uniform in `[−1, 1]³`; `1` a height
-/// field over `[−1, 1]²` with heights in `[−1.5, 1.5]`; `2` an S-fold (the
-/// rows' `x` runs −1, 1, −1, 1 plus noise, so lines along `x` cross it up to
-/// three times).
-fn folded_net(rng: &mut Rng, kind: usize) -> Vec<Vec<Point3<f64>>> {
-    (0..4)
-        .map(|i| {
-            (0..4)
-                .map(|j| {
-                    let (a, b) = (i as f64 / 3.0 * 2.0 - 1.0, j as f64 / 3.0 * 2.0 - 1.0);
-                    match kind {
-                        0 => rng.point([-1.0; 3], [1.0; 3]),
-                        1 => Point3::new(a, b, rng.range(-1.5, 1.5)),
-                        _ => {
-                            let x = if i % 2 == 0 { -1.0 } else { 1.0 };
-                            Point3::new(
-                                x + rng.range(-0.2, 0.2),
-                                b + rng.range(-0.2, 0.2),
-                                a + rng.range(-0.3, 0.3),
-                            )
-                        }
-                    }
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// Tallies of a comparison run.
-#[derive(Debug, Default)]
-struct Tally {
-    rays: usize,
-    excluded: usize,
-    /// Rays by their number of hits (4 = four or more).
-    by_count: [usize; 5],
-}
-
-/// Compares the intersector with the reference on one ray: unless the
-/// reference flags the ray (doubtful, a root within `1e-4` of tangency or
-/// `1e-7` of a patch edge, two roots within `1e-7·size`), the walk of
-/// secondary rays finds exactly the reference's roots in `(0, ∞)`, in order,
-/// `t` within `1e-9·size/|d|` and `(u, v)` within `1e-6`.
-fn compare<S: revolve::Surface + Intersect>(
-    s: &S,
-    want: &RefHits,
-    ray: &Ray,
-    size: f64,
-    tally: &mut Tally,
-) {
-    tally.rays += 1;
-    let dn = ray.dir.norm();
-    if !want.clear(0.0, f64::INFINITY, 1e-4, 1e-7 * size / dn) {
-        tally.excluded += 1;
-        return;
-    }
-    let want = want.within(0.0, f64::INFINITY);
-    let got = walk_hits(s, ray, 0.0, f64::INFINITY, 12);
-    let ts = |v: Vec<f64>| format!("{v:?}");
-    assert_eq!(
-        got.len(),
-        want.len(),
-        "hits at t = {} but the reference has {} for {ray:?}",
-        ts(got.iter().map(|h| h.t).collect()),
-        ts(want.iter().map(|h| h.t).collect()),
+    assert!(
+        checked > 2900 && two > 8,
+        "{checked} rays, {two} with two roots"
     );
-    for (g, w) in got.iter().zip(&want) {
-        check_patch_hit(s, ray, g, 0.0, f64::INFINITY);
-        assert!(
-            (g.t - w.t).abs() * dn <= 1e-9 * size,
-            "t {} vs reference {} for {ray:?}",
-            g.t,
-            w.t
-        );
-        assert!(
-            (g.uv.0 - w.u).abs() <= 1e-6 && (g.uv.1 - w.v).abs() <= 1e-6,
-            "uv {:?} vs reference ({}, {}) for {ray:?}",
-            g.uv,
-            w.u,
-            w.v
-        );
-    }
-    tally.by_count[want.len().min(4)] += 1;
 }
 
 /// Random folded bicubic patches against the reference: rays from afar at

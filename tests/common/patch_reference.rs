@@ -25,6 +25,7 @@
 //! The search covers `[−η, 1 + η]²` (`η = 1e-6`), so roots just outside a
 //! patch are seen and flagged ([`RefHit::edge`]).
 
+use super::Rng;
 use revolve::nalgebra::{Point3, Vector3};
 use revolve::{BSplineSurface, BezierSurface, Hit, Intersect, NurbsSurface, Ray, Surface};
 
@@ -355,8 +356,7 @@ fn power_form(patch: &RefPatch, o: &Point3<f64>, e: &Vector3<f64>) -> Vec<Vec<In
                     let w = Interval::point(patch.weights[i][j]);
                     let mut sum = Interval::ZERO;
                     for k in 0..3 {
-                        let rel =
-                            Interval::point(patch.points[i][j][k]).sub(Interval::point(o[k]));
+                        let rel = Interval::point(patch.points[i][j][k]).sub(Interval::point(o[k]));
                         sum = sum.add(Interval::point(e[k]).mul(w.mul(rel)));
                     }
                     sum
@@ -618,4 +618,97 @@ pub fn walk_hits<S: Intersect>(s: &S, ray: &Ray, t_min: f64, t_max: f64, cap: us
 pub fn check_patch_hit<S: Surface + Intersect>(s: &S, ray: &Ray, h: &Hit, t_min: f64, t_max: f64) {
     let scale = s.bounds().scale().max(ray.origin.coords.amax());
     super::check_hit(s, ray, h, t_min, t_max, scale);
+}
+
+/// A ray from a random point at distance `4·size` toward a random point of
+/// the box `[lo, hi]³`, its length scaled by a random factor.
+pub fn random_ray(rng: &mut Rng, size: f64, lo: f64, hi: f64) -> Ray {
+    let origin = Point3::from(rng.direction() * 4.0 * size);
+    let target = rng.point([lo; 3], [hi; 3]);
+    Ray::new(origin, (target - origin) * rng.range(0.3, 3.0))
+}
+
+/// Random bicubic control nets of three kinds, all folded so that rays meet
+/// them several times: `0` every point uniform in `[−1, 1]³`; `1` a height
+/// field over `[−1, 1]²` with heights in `[−1.5, 1.5]`; `2` an S-fold (the
+/// rows' `x` runs −1, 1, −1, 1 plus noise, so lines along `x` cross it up to
+/// three times).
+pub fn folded_net(rng: &mut Rng, kind: usize) -> Vec<Vec<Point3<f64>>> {
+    (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let (a, b) = (i as f64 / 3.0 * 2.0 - 1.0, j as f64 / 3.0 * 2.0 - 1.0);
+                    match kind {
+                        0 => rng.point([-1.0; 3], [1.0; 3]),
+                        1 => Point3::new(a, b, rng.range(-1.5, 1.5)),
+                        _ => {
+                            let x = if i % 2 == 0 { -1.0 } else { 1.0 };
+                            Point3::new(
+                                x + rng.range(-0.2, 0.2),
+                                b + rng.range(-0.2, 0.2),
+                                a + rng.range(-0.3, 0.3),
+                            )
+                        }
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Tallies of a comparison run.
+#[derive(Debug, Default)]
+pub struct Tally {
+    pub rays: usize,
+    pub excluded: usize,
+    /// Rays by their number of hits (4 = four or more).
+    pub by_count: [usize; 5],
+}
+
+/// Compares the intersector with the reference on one ray: unless the
+/// reference flags the ray (doubtful, a root within `1e-4` of tangency or
+/// `1e-7` of a patch edge, two roots within `1e-7·size`), the walk of
+/// secondary rays finds exactly the reference's roots in `(0, ∞)`, in order,
+/// `t` within `1e-9·size/|d|` and `(u, v)` within `1e-6`.
+pub fn compare<S: Surface + Intersect>(
+    s: &S,
+    want: &RefHits,
+    ray: &Ray,
+    size: f64,
+    tally: &mut Tally,
+) {
+    tally.rays += 1;
+    let dn = ray.dir.norm();
+    if !want.clear(0.0, f64::INFINITY, 1e-4, 1e-7 * size / dn) {
+        tally.excluded += 1;
+        return;
+    }
+    let want = want.within(0.0, f64::INFINITY);
+    let got = walk_hits(s, ray, 0.0, f64::INFINITY, 12);
+    let ts = |v: Vec<f64>| format!("{v:?}");
+    assert_eq!(
+        got.len(),
+        want.len(),
+        "hits at t = {} but the reference has {} for {ray:?}",
+        ts(got.iter().map(|h| h.t).collect()),
+        ts(want.iter().map(|h| h.t).collect()),
+    );
+    for (g, w) in got.iter().zip(&want) {
+        check_patch_hit(s, ray, g, 0.0, f64::INFINITY);
+        assert!(
+            (g.t - w.t).abs() * dn <= 1e-9 * size,
+            "t {} vs reference {} for {ray:?}",
+            g.t,
+            w.t
+        );
+        assert!(
+            (g.uv.0 - w.u).abs() <= 1e-6 && (g.uv.1 - w.v).abs() <= 1e-6,
+            "uv {:?} vs reference ({}, {}) for {ray:?}",
+            g.uv,
+            w.u,
+            w.v
+        );
+    }
+    tally.by_count[want.len().min(4)] += 1;
 }

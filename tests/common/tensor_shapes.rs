@@ -69,7 +69,11 @@ pub fn quadratic_roots(a: f64, b: f64, c: f64) -> (Vec<f64>, f64) {
 /// `|d|²t² + 2(o·d)t + |o|² − r²` and the relative discriminant.
 pub fn sphere_roots(r: f64, origin: &Point3<f64>, dir: &Vector3<f64>) -> (Vec<f64>, f64) {
     let o = origin.coords;
-    quadratic_roots(dir.norm_squared(), 2.0 * o.dot(dir), o.norm_squared() - r * r)
+    quadratic_roots(
+        dir.norm_squared(),
+        2.0 * o.dot(dir),
+        o.norm_squared() - r * r,
+    )
 }
 
 /// Where the line `o + t·d` meets the cylinder `x² + y² = r²`: the roots of
