@@ -558,6 +558,127 @@ fn quarter_cylinder_hits_where_the_quadratic_says() {
     assert!(hits > 500, "{hits} hits");
 }
 
+/// Secondary rays inside the quarter cylinder (its concave side): a ray
+/// from inside hits the wall once (the quadratic's positive root); the ray
+/// continued from the hit point finds nothing (no self-hit); the ray
+/// reflected there meets the wall again where the quadratic's nonzero root
+/// says (when that point is on the quarter), or misses.
+#[test]
+fn secondary_rays_inside_the_quarter_cylinder() {
+    let s = quarter_cylinder(1.0, 2.0);
+    let mut rng = Rng(0x2EF);
+    let (mut bounces, mut misses) = (0, 0);
+    for _ in 0..300 {
+        // Near the wall, heading along it (counter-clockwise), so that
+        // the reflected ray may meet the quarter again.
+        let phi = rng.range(0.05, 0.6);
+        let rho = rng.range(0.8, 0.98);
+        let origin = Point3::new(rho * phi.cos(), rho * phi.sin(), rng.range(0.5, 1.5));
+        let a = phi + rng.range(0.8, 1.5);
+        let d = Vector3::new(a.cos(), a.sin(), rng.range(-0.3, 0.3));
+        let ray = Ray::new(origin, d);
+        let (roots, _) = cylinder_roots(1.0, &ray.origin, &ray.dir);
+        let t = roots[1];
+        let p = ray.at(t);
+        if p.z.min(2.0 - p.z) < 1e-6 {
+            continue;
+        }
+        let h = nearest(&s, &ray, 0.0, INF).expect("the wall from inside");
+        close(h.t, t, 1e-9, "t from inside");
+        let on = Ray::new(h.point, d);
+        let again = s.intersect(&on, 0.0, INF);
+        assert!(again.is_none(), "self-hit {again:?} from {:?}", h.point);
+        let n = h.normal.into_inner();
+        let r = d - 2.0 * d.dot(&n) * n;
+        let bounce = Ray::new(h.point, r);
+        let (roots, _) = cylinder_roots(1.0, &bounce.origin, &bounce.dir);
+        // One root is the start (≈ 0); the other the wall across.
+        let far = if roots[0].abs() > roots[1].abs() {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        let q = bounce.at(far);
+        let margin = q.x.min(q.y).min(q.z).min(2.0 - q.z);
+        if margin.abs() < 1e-7 {
+            continue;
+        }
+        let got = nearest(&s, &bounce, 0.0, INF);
+        if far > 0.0 && margin > 0.0 {
+            close(got.expect("the wall across").t, far, 1e-9, "reflected t");
+            bounces += 1;
+        } else {
+            assert!(got.is_none(), "reflected ray {bounce:?}: {got:?}");
+            misses += 1;
+        }
+    }
+    assert!(
+        bounces > 50 && misses > 20,
+        "{bounces} bounces, {misses} misses"
+    );
+}
+
+/// The hyperbolic paraboloid `z = xy` over `[0, 1]²` has straight
+/// boundaries (rulings): rays along them lie in the surface, so any hit
+/// reported is a point of that boundary, on the ray and the surface; the
+/// same lines moved `1e-6` outside the patch meet `z = xy` only outside it
+/// (or not at all) and miss.
+#[test]
+fn rays_along_the_straight_boundaries_of_a_ruled_patch() {
+    let s = BezierSurface::new(vec![
+        vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+        vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+    ])
+    .unwrap();
+    let e = 1e-6;
+    // (start, direction, which boundary: (parameter index, value)), and the
+    // line moved outside.
+    let lines = [
+        (
+            Point3::new(0.0, -1.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            (0, 0.0),
+            Vector3::new(-e, 0.0, 0.0),
+        ),
+        (
+            Point3::new(1.0, -1.0, -1.0),
+            Vector3::new(0.0, 1.0, 1.0),
+            (0, 1.0),
+            Vector3::new(e, 0.0, 0.0),
+        ),
+        (
+            Point3::new(-1.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            (1, 0.0),
+            Vector3::new(0.0, -e, 0.0),
+        ),
+        (
+            Point3::new(-1.0, 1.0, -1.0),
+            Vector3::new(1.0, 0.0, 1.0),
+            (1, 1.0),
+            Vector3::new(0.0, e, 0.0),
+        ),
+    ];
+    for (start, dir, (which, value), out) in lines {
+        for sign in [1.0, -1.0] {
+            let (o, d) = if sign > 0.0 {
+                (start, dir)
+            } else {
+                (start + 3.0 * dir, -dir)
+            };
+            let ray = Ray::new(o, d);
+            for h in walk_hits(&s, &ray, 0.0, INF, 4) {
+                check_patch_hit(&s, &ray, &h, 0.0, INF);
+                let param = if which == 0 { h.uv.0 } else { h.uv.1 };
+                close(param, value, 1e-6, "hit on the ruling's parameter");
+            }
+            let moved = Ray::new(o + out, d);
+            let got = s.intersect(&moved, 0.0, INF);
+            assert!(got.is_none(), "line moved outside {moved:?}: {got:?}");
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------
 // A folded patch: secondary rays and windows
 // ---------------------------------------------------------------------------
@@ -785,7 +906,8 @@ fn bilinear_patches_are_affine_hyperbolic_paraboloids() {
             assert_eq!(
                 got.len(),
                 want.len(),
-                "got {got:?}, want {want:?} for {ray:?}"
+                "got {got:?}, want {want:?} for {ray:?} on the net {:?}",
+                s.points()
             );
             for (g, t) in got.iter().zip(&want) {
                 check_patch_hit(&s, &ray, g, 0.0, INF);

@@ -228,3 +228,41 @@ fn rational_bicubics_agree_with_the_reference_hit_by_hit() {
         "hit counts {by_count:?}"
     );
 }
+
+/// The reference's interval arithmetic encloses the exact results (exact
+/// rationals from `num-rational`) of sums, differences and products of
+/// random doubles of all magnitudes and signs, and of chains of them.
+#[test]
+fn reference_intervals_enclose_exact_results() {
+    use common::patch_reference::Interval;
+    use num_rational::BigRational;
+    let exact = |x: f64| BigRational::from_float(x).expect("finite");
+    let inside = |i: Interval, x: &BigRational| exact(i.lo) <= *x && *x <= exact(i.hi);
+    let mut rng = Rng(0x1A7);
+    let draw = |rng: &mut Rng| {
+        let m = rng.range(-1.0, 1.0);
+        m * 10f64.powi(rng.below(40) as i32 - 20)
+    };
+    for _ in 0..2000 {
+        let (a, b, c) = (draw(&mut rng), draw(&mut rng), draw(&mut rng));
+        let (ia, ib, ic) = (Interval::point(a), Interval::point(b), Interval::point(c));
+        let (ea, eb, ec) = (exact(a), exact(b), exact(c));
+        assert!(inside(ia.add(ib), &(&ea + &eb)), "{a} + {b}");
+        assert!(inside(ia.sub(ib), &(&ea - &eb)), "{a} − {b}");
+        assert!(inside(ia.mul(ib), &(&ea * &eb)), "{a} · {b}");
+        let chain = ia.mul(ib).add(ic).mul(ia.sub(ic));
+        assert!(
+            inside(chain, &((&ea * &eb + &ec) * (&ea - &ec))),
+            "chain {a} {b} {c}"
+        );
+        let wide = Interval::new(a, b).mul(Interval::new(c, a));
+        for x in [&ea, &eb] {
+            for y in [&ec, &ea] {
+                assert!(inside(wide, &(x * y)), "[{a}, {b}]·[{c}, {a}]");
+            }
+        }
+        // Exact results are widened by at most one step each way.
+        let one = Interval::point(1.0).add(Interval::ZERO);
+        assert!(one.lo < 1.0 && one.hi > 1.0 && one.hi - one.lo <= 2.0 * f64::EPSILON);
+    }
+}

@@ -44,6 +44,31 @@ pub const ETA: f64 = 1e-6;
 /// Largest degree the reference handles (stack arrays).
 const MAX_DEGREE: usize = 23;
 
+/// The next `f64` toward `+∞` and `−∞` (bit stepping: `f64::next_up` needs
+/// Rust 1.86, above the crate's MSRV); infinities and NaN stay.
+trait Step {
+    fn step_up(self) -> f64;
+    fn step_down(self) -> f64;
+}
+
+impl Step for f64 {
+    fn step_up(self) -> f64 {
+        if self.is_nan() || self == f64::INFINITY {
+            self
+        } else if self == 0.0 {
+            f64::from_bits(1)
+        } else if self > 0.0 {
+            f64::from_bits(self.to_bits() + 1)
+        } else {
+            f64::from_bits(self.to_bits() - 1)
+        }
+    }
+
+    fn step_down(self) -> f64 {
+        -(-self).step_up()
+    }
+}
+
 /// A closed interval `[lo, hi]` with outward rounding.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interval {
@@ -70,16 +95,16 @@ impl Interval {
     /// The sum, one ulp wider on each side than the rounded ends.
     pub fn add(self, o: Interval) -> Self {
         Interval {
-            lo: (self.lo + o.lo).next_down(),
-            hi: (self.hi + o.hi).next_up(),
+            lo: (self.lo + o.lo).step_down(),
+            hi: (self.hi + o.hi).step_up(),
         }
     }
 
     /// The difference.
     pub fn sub(self, o: Interval) -> Self {
         Interval {
-            lo: (self.lo - o.hi).next_down(),
-            hi: (self.hi - o.lo).next_up(),
+            lo: (self.lo - o.hi).step_down(),
+            hi: (self.hi - o.lo).step_up(),
         }
     }
 
@@ -94,8 +119,8 @@ impl Interval {
         let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         Interval {
-            lo: lo.next_down(),
-            hi: hi.next_up(),
+            lo: lo.step_down(),
+            hi: hi.step_up(),
         }
     }
 
@@ -381,9 +406,9 @@ fn power_form(patch: &RefPatch, o: &Point3<f64>, e: &Vector3<f64>) -> Vec<Vec<In
             .collect()
     };
     for j in 0..=q {
-        let col: Vec<Interval> = (0..=p).map(|i| c[i][j]).collect();
-        for (i, x) in convert(&col).into_iter().enumerate() {
-            c[i][j] = x;
+        let col: Vec<Interval> = c.iter().map(|row| row[j]).collect();
+        for (row, x) in c.iter_mut().zip(convert(&col)) {
+            row[j] = x;
         }
     }
     for row in c.iter_mut() {
@@ -411,6 +436,7 @@ fn enclose(
     let (x0, y0) = (Interval::point(u0), Interval::point(v0));
     // Shift in u: each column j, the polynomial Σₐ g[a][j] uᵃ.
     if u0 != 0.0 {
+        #[allow(clippy::needless_range_loop)] // the shift runs down each column
         for j in 0..=q {
             for i in 0..p {
                 for a in (i..p).rev() {
