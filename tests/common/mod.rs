@@ -16,9 +16,9 @@
 //!   NURBS profiles), [`closed_forms`] (their ray equations with exact
 //!   coefficients) and [`exact_roots`] (exact real-root isolation).
 //! - Tensor-product surfaces: [`tensor_shapes`] (the NURBS sphere octant and
-//!   quarter cylinder with their quadratics) and [`patch_reference`] (every
-//!   root of a ray on a Bézier patch, by interval subdivision of the power
-//!   form).
+//!   quarter cylinder with their quadratics), Newell's [`teapot`] and
+//!   [`patch_reference`] (every root of a ray on a Bézier patch, by interval
+//!   subdivision of the power form).
 
 #![allow(dead_code)]
 
@@ -26,6 +26,7 @@ pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
 pub mod patch_reference;
+pub mod teapot;
 pub mod tensor_shapes;
 
 use revolve::nalgebra::{Point2, Point3, Vector3};
