@@ -9,13 +9,14 @@ mod common;
 
 use common::Rng;
 use common::patch_reference::{
-    RefHits, RefPatch, Tally, bezier_hits, compare, folded_net, hits_on, nurbs_hits, random_ray,
+    RefHits, RefPatch, Tally, bezier_hits, check_patch_hit, compare, folded_net, hits_on,
+    nurbs_hits, random_ray,
 };
 use common::tensor_shapes::{
     cylinder_roots, quadratic_roots, quarter_cylinder, sphere_octant, sphere_roots,
 };
 use revolve::nalgebra::Point3;
-use revolve::{BezierSurface, NurbsSurface, Ray};
+use revolve::{BezierPatches, BezierSurface, Intersect, NurbsSurface, Ray};
 
 /// Compares the reference's roots in `(0, ∞)` with closed-form roots `want`
 /// (`t` ascending): same count, `t` within `1e-10·size/|d|`.
@@ -265,4 +266,62 @@ fn reference_intervals_enclose_exact_results() {
         let one = Interval::point(1.0).add(Interval::ZERO);
         assert!(one.lo < 1.0 && one.hi > 1.0 && one.hi - one.lo <= 2.0 * f64::EPSILON);
     }
+}
+
+/// Newell's teapot (32 bicubic patches, collapsed edges at the lid's apex
+/// and the bottom) through `BezierPatches`: along random rays from around
+/// it, every hit walked (`t_min` = the previous hit) is the reference's
+/// next root over all patches (`t` to `1e-9` of the teapot's size, the
+/// point on the ray and on the reported patch at its `uv`); rays the
+/// reference flags (near tangency, a patch edge, a doubtful box) are left
+/// out, at most 2%.
+#[test]
+fn teapot_agrees_with_the_reference_hit_by_hit() {
+    let patches = common::teapot::patches();
+    let model = BezierPatches::new(patches.clone()).unwrap();
+    let reference: Vec<RefPatch> = patches
+        .iter()
+        .map(|p| RefPatch::polynomial(p.points().to_vec()))
+        .collect();
+    let b = model.bounds();
+    let size = b.scale();
+    let centre = b.center();
+    let mut rng = Rng(0x7EA);
+    let (mut rays, mut excluded, mut hits) = (0, 0, 0);
+    for _ in 0..300 {
+        let origin = centre + rng.direction() * 2.0 * size;
+        let target = rng.point_in(&b);
+        let ray = Ray::new(origin, target - origin);
+        let dn = ray.dir.norm();
+        rays += 1;
+        let want = hits_on(&reference, &ray);
+        if !want.clear(0.0, f64::INFINITY, 1e-4, 1e-7 * size / dn) {
+            excluded += 1;
+            continue;
+        }
+        let want = want.within(0.0, f64::INFINITY);
+        let mut from = 0.0;
+        for (n, w) in want.iter().enumerate() {
+            let (k, h) = model
+                .intersect_patch(&ray, from, f64::INFINITY)
+                .unwrap_or_else(|| panic!("hit {n} at t = {} missed: {ray:?}", w.t));
+            check_patch_hit(&patches[k], &ray, &h, from, f64::INFINITY);
+            assert!(
+                (h.t - w.t).abs() * dn <= 1e-9 * size,
+                "hit {n}: t {} vs reference {} for {ray:?}",
+                h.t,
+                w.t
+            );
+            from = h.t;
+            hits += 1;
+        }
+        let extra = model.intersect_patch(&ray, from, f64::INFINITY);
+        assert!(
+            extra.is_none(),
+            "a hit beyond the reference's: {extra:?} for {ray:?}"
+        );
+    }
+    eprintln!("{rays} rays, {excluded} excluded, {hits} hits");
+    assert!(excluded * 50 < rays, "{excluded} of {rays} excluded");
+    assert!(hits > 300, "{hits} hits");
 }
