@@ -325,3 +325,29 @@ fn teapot_agrees_with_the_reference_hit_by_hit() {
     assert!(excluded * 50 < rays, "{excluded} of {rays} excluded");
     assert!(hits > 300, "{hits} hits");
 }
+
+/// The reference flags what it cannot settle, so that comparisons leave
+/// those rays out: a ray straight down through the sphere octant's pole
+/// (a collapsed edge: the roots fill the row `u = 0`) and a ray exactly
+/// tangent to the sphere are not `clear`; both still report the root (the
+/// pole at `t = 1`, the touch point at `t = 3` to `1e-7`).
+#[test]
+fn reference_flags_collapsed_edges_and_tangency() {
+    let s = sphere_octant(1.0);
+    let down = Ray::new(Point3::new(0.0, 0.0, 2.0), -revolve::nalgebra::Vector3::z());
+    let pole = nurbs_hits(&s, &down);
+    assert!(!pole.clear(0.0, f64::INFINITY, 1e-4, 1e-7), "{pole:?}");
+    assert!(
+        pole.hits.iter().any(|h| (h.t - 1.0).abs() <= 1e-9),
+        "{pole:?}"
+    );
+    let touch = revolve::nalgebra::Vector3::new(1.0, 2.0, 2.0) / 3.0;
+    let dir = revolve::nalgebra::Vector3::new(2.0, -1.0, 0.0).normalize();
+    let tangent = Ray::new(Point3::from(touch - 3.0 * dir), dir);
+    let graze = nurbs_hits(&s, &tangent);
+    assert!(!graze.clear(0.0, f64::INFINITY, 1e-4, 1e-7), "{graze:?}");
+    assert!(
+        graze.hits.iter().any(|h| (h.t - 3.0).abs() <= 1e-7),
+        "{graze:?}"
+    );
+}

@@ -288,7 +288,10 @@ pub fn bezier_hits(s: &BezierSurface, ray: &Ray) -> RefHits {
     hits_on(&[RefPatch::polynomial(s.points().to_vec())], ray)
 }
 
-/// The reference's roots on a B-spline surface (its Bézier pieces).
+/// The reference's roots on a B-spline surface (its Bézier pieces, from
+/// the library's `to_bezier_patches`, which `tests/tensor_surfaces.rs`
+/// checks against an independent evaluator; the root finding here is the
+/// reference's own).
 pub fn bspline_hits(s: &BSplineSurface, ray: &Ray) -> RefHits {
     let patches: Vec<RefPatch> = s
         .to_bezier_patches()
