@@ -6,10 +6,10 @@
 
 mod common;
 
-use common::Rng;
+use common::{Rng, teapot};
 use common::tensor_shapes::sphere_octant;
 use revolve::nalgebra::{Point3, Vector3};
-use revolve::{BSplineSurface, BezierSurface, Error, Mesh, NurbsSurface, Surface};
+use revolve::{BSplineSurface, BezierPatches, BezierSurface, Error, Mesh, NurbsSurface, Surface};
 use std::collections::HashMap;
 
 // ---------------------------------------------------------------------------
@@ -474,6 +474,96 @@ fn edge_counts(mesh: &Mesh) -> HashMap<(u32, u32), usize> {
     counts
 }
 
+/// The loops of boundary edges (used by one triangle), each as its list of
+/// vertices; asserts every boundary vertex has exactly two boundary edges
+/// (the boundary is a set of closed curves).
+fn boundary_loops(counts: &HashMap<(u32, u32), usize>) -> Vec<Vec<u32>> {
+    let mut next: HashMap<u32, Vec<u32>> = HashMap::new();
+    for (&(a, b), _) in counts.iter().filter(|&(_, &c)| c == 1) {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    assert!(next.values().all(|n| n.len() == 2), "a boundary vertex off a simple loop");
+    let mut seen: HashMap<u32, ()> = HashMap::new();
+    let mut loops = Vec::new();
+    let mut starts: Vec<u32> = next.keys().copied().collect();
+    starts.sort_unstable();
+    for start in starts {
+        if seen.contains_key(&start) {
+            continue;
+        }
+        let mut cycle = vec![start];
+        seen.insert(start, ());
+        let (mut previous, mut at) = (start, next[&start][0]);
+        while at != start {
+            cycle.push(at);
+            seen.insert(at, ());
+            let n = &next[&at];
+            let step = if n[0] == previous { n[1] } else { n[0] };
+            (previous, at) = (at, step);
+        }
+        loops.push(cycle);
+    }
+    loops
+}
+
+#[test]
+fn teapot_is_watertight_but_where_the_model_is_open() {
+    let model = BezierPatches::new(teapot::patches()).unwrap();
+    let mesh = model.tessellate(1e-2).unwrap();
+    assert!(mesh.bound <= 1e-2);
+    check_structure(&mesh, [(0.0, 1.0), (0.0, 1.0)]);
+    let counts = edge_counts(&mesh);
+    assert!(counts.values().all(|&c| c <= 2), "an edge of three triangles");
+    // The model is open in six places, each a simple loop of boundary
+    // edges: the rim's inner edge (r = 1.4) and the lid's outer edge
+    // (r = 1.3) leave a gap at z = 2.4; the handle's two ends and the
+    // spout's base end on the body without being stitched to it (their end
+    // curves are not edges of the body's patches); the spout's tip is open.
+    // Every other edge has exactly two triangles. (Boxes of the loops'
+    // vertices, x, y, z lows then highs.)
+    let expected: [([f64; 3], [f64; 3], &str); 6] = [
+        ([-1.4, -1.4, 2.4], [1.4, 1.4, 2.4], "rim"),
+        ([-1.3, -1.3, 2.4], [1.3, 1.3, 2.4], "lid"),
+        ([-2.0, -0.225, 0.6], [-1.9, 0.225, 0.9], "handle, lower end"),
+        ([-1.6, -0.225, 2.025], [-1.5, 0.225, 2.25], "handle, upper end"),
+        ([1.7, -0.495, 0.6], [1.7, 0.495, 1.425], "spout, base"),
+        ([2.8, -0.1125, 2.4], [3.2, 0.1125, 2.4], "spout, tip"),
+    ];
+    let loops = boundary_loops(&counts);
+    assert_eq!(loops.len(), expected.len());
+    let boundary_edges = counts.values().filter(|&&c| c == 1).count();
+    assert_eq!(loops.iter().map(Vec::len).sum::<usize>(), boundary_edges);
+    for (lo_want, hi_want, name) in expected {
+        let found = loops.iter().any(|l| {
+            let (lo, hi) = l.iter().fold(
+                (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY)),
+                |(lo, hi), &i| {
+                    let x = mesh.positions[i as usize].coords;
+                    (lo.inf(&x), hi.sup(&x))
+                },
+            );
+            (lo - Vector3::from(lo_want)).amax() < 1e-2 && (hi - Vector3::from(hi_want)).amax() < 1e-2
+        });
+        assert!(found, "no open loop at the {name}");
+    }
+    eprintln!(
+        "teapot: {} vertices, {} triangles, {} edges ({boundary_edges} boundary)",
+        mesh.positions.len(),
+        mesh.triangles.len(),
+        counts.len(),
+    );
+    // Every surface point of every patch is within the bound.
+    let mut samples = Vec::new();
+    for (k, patch) in model.patches().iter().enumerate() {
+        for (u, v) in sample_parameters(patch.domain(), k as u64).into_iter().step_by(4) {
+            samples.push(patch.eval(u, v));
+        }
+    }
+    let worst = measured_deviation(&mesh, &samples, "teapot");
+    eprintln!("teapot: bound {:.3e}, measured {worst:.3e} (ratio {:.3})", mesh.bound, worst / mesh.bound);
+}
+
 #[test]
 fn closed_bspline_tube_is_watertight() {
     // A cylinder closed in v by repeating the first control column at the
@@ -613,3 +703,4 @@ fn obj_reads_back() {
     assert_eq!(normals, mesh.normals.len());
     assert_eq!(uvs, mesh.uvs.len());
 }
+
