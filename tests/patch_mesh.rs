@@ -6,8 +6,8 @@
 
 mod common;
 
-use common::{Rng, teapot};
 use common::tensor_shapes::sphere_octant;
+use common::{Rng, teapot};
 use revolve::nalgebra::{Point3, Vector3};
 use revolve::{BSplineSurface, BezierPatches, BezierSurface, Error, Mesh, NurbsSurface, Surface};
 use std::collections::HashMap;
@@ -207,10 +207,17 @@ fn bernstein_sum(points: &[Vec<Point3<f64>>], u: f64, v: f64) -> Point3<f64> {
 fn check_bezier(points: Vec<Vec<Point3<f64>>>, tolerance: f64, name: &str) -> (f64, f64, Mesh) {
     let surface = BezierSurface::new(points.clone()).unwrap();
     let mesh = surface.tessellate(tolerance).unwrap();
-    assert!(mesh.bound <= tolerance, "{name}: bound {} > {tolerance}", mesh.bound);
+    assert!(
+        mesh.bound <= tolerance,
+        "{name}: bound {} > {tolerance}",
+        mesh.bound
+    );
     check_structure(&mesh, surface.domain());
     for (x, &(u, v)) in mesh.positions.iter().zip(&mesh.uvs) {
-        assert!((x - bernstein_sum(&points, u, v)).norm() < 1e-12, "{name}: vertex off the surface");
+        assert!(
+            (x - bernstein_sum(&points, u, v)).norm() < 1e-12,
+            "{name}: vertex off the surface"
+        );
     }
     let samples: Vec<Point3<f64>> = sample_parameters(surface.domain(), 7)
         .into_iter()
@@ -228,11 +235,20 @@ fn check_bezier(points: Vec<Vec<Point3<f64>>>, tolerance: f64, name: &str) -> (f
     (worst, mesh.bound, mesh)
 }
 
-fn grid(rows: usize, cols: usize, mut f: impl FnMut(f64, f64) -> Point3<f64>) -> Vec<Vec<Point3<f64>>> {
+fn grid(
+    rows: usize,
+    cols: usize,
+    mut f: impl FnMut(f64, f64) -> Point3<f64>,
+) -> Vec<Vec<Point3<f64>>> {
     (0..rows)
         .map(|i| {
             (0..cols)
-                .map(|j| f(i as f64 / (rows - 1) as f64, j as f64 / (cols - 1).max(1) as f64))
+                .map(|j| {
+                    f(
+                        i as f64 / (rows - 1) as f64,
+                        j as f64 / (cols - 1).max(1) as f64,
+                    )
+                })
                 .collect()
         })
         .collect()
@@ -286,7 +302,10 @@ fn random_bicubic_is_within_a_tight_bound() {
     let points = grid(4, 4, |_, _| rng_point(&mut Rng(rng.next_u64())));
     let (worst, bound, _) = check_bezier(points, 2e-3, "random bicubic");
     // Not absurdly loose: the second-difference bound is within a factor 50.
-    assert!(worst >= bound / 50.0, "measured {worst:e} vs bound {bound:e}");
+    assert!(
+        worst >= bound / 50.0,
+        "measured {worst:e} vs bound {bound:e}"
+    );
 }
 
 fn rng_point(rng: &mut Rng) -> Point3<f64> {
@@ -308,7 +327,10 @@ fn folded_bicubic_is_within_its_bound() {
         })
         .collect();
     let (worst, bound, _) = check_bezier(points, 1e-3, "folded bicubic");
-    assert!(worst >= bound / 50.0, "measured {worst:e} vs bound {bound:e}");
+    assert!(
+        worst >= bound / 50.0,
+        "measured {worst:e} vs bound {bound:e}"
+    );
 }
 
 #[test]
@@ -342,9 +364,7 @@ fn bspline_with_repeated_knots_is_within_its_bound() {
     let points: Vec<Vec<Point3<f64>>> = (0..rows)
         .map(|i| {
             (0..cols)
-                .map(|j| {
-                    Point3::new(i as f64, j as f64, rng.range(-1.0, 1.0))
-                })
+                .map(|j| Point3::new(i as f64, j as f64, rng.range(-1.0, 1.0)))
                 .collect()
         })
         .collect();
@@ -384,7 +404,9 @@ fn bspline_with_repeated_knots_is_within_its_bound() {
         u == u0 || u == u1 || v == v0 || v == v1
     };
     assert!(boundary.iter().all(|&(a, b)| on_rim(a) && on_rim(b)));
-    let rim_vertices = (0..mesh.positions.len() as u32).filter(|&i| on_rim(i)).count();
+    let rim_vertices = (0..mesh.positions.len() as u32)
+        .filter(|&i| on_rim(i))
+        .count();
     // A closed polygon around the domain: as many edges as vertices.
     assert_eq!(boundary.len(), rim_vertices);
     let euler = mesh.positions.len() as i64 - counts.len() as i64 + mesh.triangles.len() as i64;
@@ -483,7 +505,10 @@ fn boundary_loops(counts: &HashMap<(u32, u32), usize>) -> Vec<Vec<u32>> {
         next.entry(a).or_default().push(b);
         next.entry(b).or_default().push(a);
     }
-    assert!(next.values().all(|n| n.len() == 2), "a boundary vertex off a simple loop");
+    assert!(
+        next.values().all(|n| n.len() == 2),
+        "a boundary vertex off a simple loop"
+    );
     let mut seen: HashMap<u32, ()> = HashMap::new();
     let mut loops = Vec::new();
     let mut starts: Vec<u32> = next.keys().copied().collect();
@@ -514,7 +539,10 @@ fn teapot_is_watertight_but_where_the_model_is_open() {
     assert!(mesh.bound <= 1e-2);
     check_structure(&mesh, [(0.0, 1.0), (0.0, 1.0)]);
     let counts = edge_counts(&mesh);
-    assert!(counts.values().all(|&c| c <= 2), "an edge of three triangles");
+    assert!(
+        counts.values().all(|&c| c <= 2),
+        "an edge of three triangles"
+    );
     // The model is open in six places, each a simple loop of boundary
     // edges: the rim's inner edge (r = 1.4) and the lid's outer edge
     // (r = 1.3) leave a gap at z = 2.4; the handle's two ends and the
@@ -526,7 +554,11 @@ fn teapot_is_watertight_but_where_the_model_is_open() {
         ([-1.4, -1.4, 2.4], [1.4, 1.4, 2.4], "rim"),
         ([-1.3, -1.3, 2.4], [1.3, 1.3, 2.4], "lid"),
         ([-2.0, -0.225, 0.6], [-1.9, 0.225, 0.9], "handle, lower end"),
-        ([-1.6, -0.225, 2.025], [-1.5, 0.225, 2.25], "handle, upper end"),
+        (
+            [-1.6, -0.225, 2.025],
+            [-1.5, 0.225, 2.25],
+            "handle, upper end",
+        ),
         ([1.7, -0.495, 0.6], [1.7, 0.495, 1.425], "spout, base"),
         ([2.8, -0.1125, 2.4], [3.2, 0.1125, 2.4], "spout, tip"),
     ];
@@ -537,13 +569,17 @@ fn teapot_is_watertight_but_where_the_model_is_open() {
     for (lo_want, hi_want, name) in expected {
         let found = loops.iter().any(|l| {
             let (lo, hi) = l.iter().fold(
-                (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY)),
+                (
+                    Vector3::repeat(f64::INFINITY),
+                    Vector3::repeat(f64::NEG_INFINITY),
+                ),
                 |(lo, hi), &i| {
                     let x = mesh.positions[i as usize].coords;
                     (lo.inf(&x), hi.sup(&x))
                 },
             );
-            (lo - Vector3::from(lo_want)).amax() < 1e-2 && (hi - Vector3::from(hi_want)).amax() < 1e-2
+            (lo - Vector3::from(lo_want)).amax() < 1e-2
+                && (hi - Vector3::from(hi_want)).amax() < 1e-2
         });
         assert!(found, "no open loop at the {name}");
     }
@@ -556,12 +592,19 @@ fn teapot_is_watertight_but_where_the_model_is_open() {
     // Every surface point of every patch is within the bound.
     let mut samples = Vec::new();
     for (k, patch) in model.patches().iter().enumerate() {
-        for (u, v) in sample_parameters(patch.domain(), k as u64).into_iter().step_by(4) {
+        for (u, v) in sample_parameters(patch.domain(), k as u64)
+            .into_iter()
+            .step_by(4)
+        {
             samples.push(patch.eval(u, v));
         }
     }
     let worst = measured_deviation(&mesh, &samples, "teapot");
-    eprintln!("teapot: bound {:.3e}, measured {worst:.3e} (ratio {:.3})", mesh.bound, worst / mesh.bound);
+    eprintln!(
+        "teapot: bound {:.3e}, measured {worst:.3e} (ratio {:.3})",
+        mesh.bound,
+        worst / mesh.bound
+    );
 }
 
 #[test]
@@ -569,7 +612,14 @@ fn closed_bspline_tube_is_watertight() {
     // A cylinder closed in v by repeating the first control column at the
     // end (clamped knots, the seam is a shared patch edge of equal control
     // points), open at its two ends: several spans both ways.
-    let ring = [(1.0, 0.0), (1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (1.0, 0.0)];
+    let ring = [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 0.0),
+    ];
     let points: Vec<Vec<Point3<f64>>> = (0..5)
         .map(|i| {
             ring.iter()
@@ -594,8 +644,16 @@ fn closed_bspline_tube_is_watertight() {
         .map(|(&e, _)| e)
         .collect();
     let end = |i: u32| mesh.uvs[i as usize].0;
-    assert!(boundary.iter().all(|&(a, b)| end(a) == end(b) && (end(a) == u0 || end(a) == u1)));
-    let end_vertices = mesh.uvs.iter().filter(|&&(u, _)| u == u0 || u == u1).count();
+    assert!(
+        boundary
+            .iter()
+            .all(|&(a, b)| end(a) == end(b) && (end(a) == u0 || end(a) == u1))
+    );
+    let end_vertices = mesh
+        .uvs
+        .iter()
+        .filter(|&&(u, _)| u == u0 || u == u1)
+        .count();
     assert_eq!(boundary.len(), end_vertices);
     // An annulus: V − E + F = 0.
     let euler = mesh.positions.len() as i64 - counts.len() as i64 + mesh.triangles.len() as i64;
@@ -616,11 +674,10 @@ fn bad_tolerances_are_named_errors() {
         grid(2, 2, |a, b| Point3::new(a, b, 0.0)),
     )
     .unwrap();
-    let all: [&dyn Fn(f64) -> Result<Mesh, Error>; 3] = [
-        &|t| octant.tessellate(t),
-        &|t| bezier.tessellate(t),
-        &|t| bspline.tessellate(t),
-    ];
+    let all: [&dyn Fn(f64) -> Result<Mesh, Error>; 3] =
+        [&|t| octant.tessellate(t), &|t| bezier.tessellate(t), &|t| {
+            bspline.tessellate(t)
+        }];
     for tessellate in all {
         for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             match tessellate(bad) {
@@ -659,6 +716,35 @@ fn huge_tolerance_gives_one_cell() {
     assert!(mesh.bound <= 1e6);
 }
 
+#[test]
+fn degenerate_patches_give_finite_meshes() {
+    // Degree 0 in u (a curve, every cell's image a segment) and a patch
+    // collapsed to one point: no panic, no NaN, unit normals, and the
+    // surface still within the bound (collapsed triangles are kept where
+    // nothing else covers their segment).
+    let curve = vec![vec![
+        Point3::new(0.0, 0.0, 0.0),
+        Point3::new(1.0, 2.0, 0.0),
+        Point3::new(2.0, 0.0, 1.0),
+    ]];
+    let point = vec![vec![Point3::new(1.0, 2.0, 3.0); 3]; 3];
+    for points in [curve, point] {
+        let surface = BezierSurface::new(points.clone()).unwrap();
+        let mesh = surface.tessellate(1e-3).unwrap();
+        assert!(!mesh.triangles.is_empty());
+        for (x, n) in mesh.positions.iter().zip(&mesh.normals) {
+            assert!(x.coords.iter().all(|c| c.is_finite()));
+            assert!((n.norm() - 1.0).abs() < 1e-12);
+        }
+        let samples: Vec<Point3<f64>> = sample_parameters(surface.domain(), 1)
+            .into_iter()
+            .step_by(16)
+            .map(|(u, v)| bernstein_sum(&points, u, v))
+            .collect();
+        measured_deviation(&mesh, &samples, "degenerate");
+    }
+}
+
 // ---------------------------------------------------------------------------
 // OBJ
 // ---------------------------------------------------------------------------
@@ -668,7 +754,10 @@ fn obj_reads_back() {
     let surface = NurbsSurface::from(
         BSplineSurface::new(
             (2, 2),
-            (vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]),
+            (
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            ),
             grid(3, 3, |a, b| Point3::new(a, b, (a * 3.0).sin() * b)),
         )
         .unwrap(),
@@ -703,4 +792,3 @@ fn obj_reads_back() {
     assert_eq!(normals, mesh.normals.len());
     assert_eq!(uvs, mesh.uvs.len());
 }
-

@@ -2,11 +2,11 @@
 //! rational ones (knot refinement into Bézier patches, knot insertion).
 
 use super::patch_mesh::tessellate_patches;
-use super::{BezierSurface, Mesh};
 use super::tensor_patch::{
     Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
     weight_scale,
 };
+use super::{BezierSurface, Mesh};
 use crate::Error;
 use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{

@@ -1,8 +1,8 @@
 //! Tensor-product rational B-spline (NURBS) surfaces.
 
+use super::bspline_surface::TensorSpline;
 use super::patch_mesh::tessellate_patches;
 use super::{BSplineSurface, Mesh};
-use super::bspline_surface::TensorSpline;
 use crate::Error;
 use nalgebra::{Point3, Vector3};
 

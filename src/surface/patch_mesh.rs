@@ -46,7 +46,11 @@
 //! `|S_st| ≤ (|A_st| + W_s|S_t| + W_t|S_s| + W_st R)/w_min`.
 //!
 //! For a polynomial patch (equal weights) the `W` terms vanish and these are
-//! the classic `p(p−1)·max|Δ²_s P|` etc. The counts are chosen per patch as
+//! the classic `p(p−1)·max|Δ²_s P|` etc. They are taken on each of the
+//! patch's `4 × 4` equal sub-patches (de Casteljau subdivision) and the
+//! largest, times `4²` for the change of parameter, bounds the whole patch:
+//! closer to the true maxima, above all for rational patches (smaller `R`
+//! and weight variation per piece). The counts are chosen per patch as
 //! `n_s = ⌈√((M_ss + M_st)/(4τ))⌉`, `n_t = ⌈√((M_tt + M_st)/(4τ))⌉`, which
 //! gives a bound `≤ τ` (as `2hk ≤ h² + k²`), then raised to agree across
 //! shared edges (below).
@@ -72,13 +76,14 @@
 //! boundary edge come from the edge curve alone, evaluated in a canonical
 //! direction (the lexicographically smaller of the control sequence and its
 //! reverse, compared bit by bit), so both sides compute bit-identical points;
-//! equal positions are then welded into one vertex. Edges collapsed to a
+//! edge vertices with equal positions are then welded into one vertex (a
+//! patch's interior vertices are its own). Edges collapsed to a
 //! point are not matched (every one of their vertices is that point).
 
 use super::Mesh;
 use super::tensor_patch::{Patch, PatchTable, tensor_jet};
 use crate::Error;
-use crate::bernstein;
+use crate::bernstein::{self, Coefficient};
 use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE};
 use crate::error::try_with_capacity;
 use nalgebra::{Point3, Unit, Vector3};
@@ -166,7 +171,7 @@ pub(crate) fn tessellate_patches(
         *n = class_need[classes.find(node)];
     }
     let vertices: f64 = need.chunks(2).map(|c| (c[0] + 1.0) * (c[1] + 1.0)).sum();
-    if !(vertices <= Mesh::MAX_VERTICES as f64) {
+    if vertices.is_nan() || vertices > Mesh::MAX_VERTICES as f64 {
         let ratio = if vertices.is_finite() {
             vertices / Mesh::MAX_VERTICES as f64
         } else {
@@ -252,6 +257,7 @@ fn build(
             let (s, u) = param(i, ns, patch.u);
             for j in 0..=nt {
                 let (t, v) = param(j, nt, patch.v);
+                let on_rim = i == 0 || i == ns || j == 0 || j == nt;
                 let position = if i == 0 {
                     rim[0][j]
                 } else if i == ns {
@@ -264,9 +270,15 @@ fn build(
                     let h = tensor_jet(&patch.net, cols, s, t, 0)[0][0];
                     Point3::from(h.wp / h.w)
                 };
-                let key = position.coords.map(f64::to_bits);
                 let next = mesh.positions.len() as u32;
-                let id = *welded.entry([key.x, key.y, key.z]).or_insert(next);
+                // Only edge vertices can be shared (with other patches, or
+                // along a collapsed edge): they are welded by their bits.
+                let id = if on_rim {
+                    let key = position.coords.map(f64::to_bits);
+                    *welded.entry([key.x, key.y, key.z]).or_insert(next)
+                } else {
+                    next
+                };
                 if id == next {
                     mesh.positions.push(position);
                     mesh.uvs.push((u, v));
@@ -414,13 +426,78 @@ fn edge_points(controls: &[Homogeneous<3>], n: usize) -> Vec<Point3<f64>> {
     points
 }
 
-/// Bounds on `|S_ss|`, `|S_st|`, `|S_tt|` over the patch (see the module
-/// docs), each difference enlarged by its rounding.
+/// Each patch's second-partial bounds are the largest over its
+/// `SUBPATCHES × SUBPATCHES` equal sub-patches (de Casteljau subdivision),
+/// scaled back to the patch's parameters: closer to the true maxima than
+/// the whole net's differences, above all for rational patches (smaller
+/// `R` and weight variation).
+const SUBPATCHES: usize = 4;
+
+/// The pieces of the Bézier coefficients `c` on the `m` equal parts of
+/// `[0, 1]`, each on its own `[0, 1]`.
+fn split<T: Coefficient>(c: &[T], m: usize) -> Vec<Vec<T>> {
+    let mut rest = c.to_vec();
+    let mut left = c.to_vec();
+    let mut right = c.to_vec();
+    let mut pieces = Vec::with_capacity(m);
+    for k in 0..m - 1 {
+        bernstein::subdivide(&rest, 1.0 / (m - k) as f64, &mut left, &mut right);
+        pieces.push(left.clone());
+        rest.copy_from_slice(&right);
+    }
+    pieces.push(rest);
+    pieces
+}
+
+/// Bounds on `|S_ss|`, `|S_st|`, `|S_tt|` over the patch in its `(s, t)`:
+/// the largest of the sub-patches' bounds ([`net_curvature`]) times `m²`
+/// (a sub-patch's parameter is `m` times the patch's).
 fn curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
+    let m = SUBPATCHES;
+    let cols = q + 1;
+    // Rows (in t) split into m pieces: strips[b][i] is row i on piece b.
+    let strips: Vec<Vec<Vec<Homogeneous<3>>>> = {
+        let rows: Vec<Vec<Vec<Homogeneous<3>>>> = net.chunks(cols).map(|r| split(r, m)).collect();
+        (0..m)
+            .map(|b| rows.iter().map(|pieces| pieces[b].clone()).collect())
+            .collect()
+    };
+    let mut worst = Curvature {
+        ss: 0.0,
+        st: 0.0,
+        tt: 0.0,
+    };
+    let scale = (m * m) as f64;
+    for strip in &strips {
+        // Columns (in s) of this strip, split into m pieces.
+        let columns: Vec<Vec<Vec<Homogeneous<3>>>> = (0..cols)
+            .map(|j| split(&strip.iter().map(|row| row[j]).collect::<Vec<_>>(), m))
+            .collect();
+        for a in 0..m {
+            let mut sub = Vec::with_capacity(net.len());
+            for i in 0..=p {
+                sub.extend(columns.iter().map(|pieces| pieces[a][i]));
+            }
+            let c = net_curvature(&sub, p, q);
+            worst.ss = worst.ss.max(c.ss * scale);
+            worst.st = worst.st.max(c.st * scale);
+            worst.tt = worst.tt.max(c.tt * scale);
+        }
+    }
+    worst
+}
+
+/// Bounds on `|S_ss|`, `|S_st|`, `|S_tt|` over the (sub-)patch of `net`
+/// (see the module docs), each difference enlarged by the rounding of the
+/// subdivided net and its own.
+fn net_curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
     let cols = q + 1;
     let points: Vec<Vector3<f64>> = net.iter().map(|h| h.wp / h.w).collect();
     let (lo, hi) = points.iter().fold(
-        (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY)),
+        (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        ),
         |(lo, hi), x| (lo.inf(x), hi.sup(x)),
     );
     let centre = (lo + hi) * 0.5;
@@ -428,7 +505,12 @@ fn curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
         .iter()
         .fold(0.0_f64, |m, x| m.max((x - centre).norm()));
     // (w(P − c), w) per control point.
-    let a: Vec<(Vector3<f64>, f64)> = net.iter().map(|h| (h.wp - centre * h.w, h.w)).collect();
+    // The third entry is the size the rounding of `w(P − c)` is relative to
+    // (the untranslated magnitude: subdivision rounds before translating).
+    let a: Vec<(Vector3<f64>, f64, f64)> = net
+        .iter()
+        .map(|h| (h.wp - centre * h.w, h.w, h.wp.norm() + h.w * centre.norm()))
+        .collect();
     let w_min = net.iter().fold(f64::INFINITY, |m, h| m.min(h.w));
     let at = |i: usize, j: usize| a[i * cols + j];
     // Largest |Σ cₖ xₖ| (vector and weight parts) over the stencil
@@ -439,13 +521,13 @@ fn curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
             for j in 0..columns {
                 let (mut x, mut w, mut size, mut wsize) = (Vector3::zeros(), 0.0, 0.0, 0.0);
                 for &(di, dj, c) in shape {
-                    let (v, vw) = at(i + di, j + dj);
+                    let (v, vw, magnitude) = at(i + di, j + dj);
                     x += v * c;
                     w += vw * c;
-                    size += v.norm() * c.abs();
+                    size += magnitude * c.abs();
                     wsize += vw * c.abs();
                 }
-                let slack = 4.0 * f64::EPSILON;
+                let slack = 8.0 * (p + q + 2) as f64 * f64::EPSILON;
                 best.0 = best.0.max(x.norm() + slack * size);
                 best.1 = best.1.max(w.abs() + slack * wsize);
             }
@@ -455,8 +537,16 @@ fn curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
     let (pf, qf) = (p as f64, q as f64);
     let first_s = stencil(&[(0, 0, -1.0), (1, 0, 1.0)], p, cols);
     let first_t = stencil(&[(0, 0, -1.0), (0, 1, 1.0)], p + 1, q);
-    let second_s = stencil(&[(0, 0, 1.0), (1, 0, -2.0), (2, 0, 1.0)], p.saturating_sub(1), cols);
-    let second_t = stencil(&[(0, 0, 1.0), (0, 1, -2.0), (0, 2, 1.0)], p + 1, q.saturating_sub(1));
+    let second_s = stencil(
+        &[(0, 0, 1.0), (1, 0, -2.0), (2, 0, 1.0)],
+        p.saturating_sub(1),
+        cols,
+    );
+    let second_t = stencil(
+        &[(0, 0, 1.0), (0, 1, -2.0), (0, 2, 1.0)],
+        p + 1,
+        q.saturating_sub(1),
+    );
     let twist = stencil(
         &[(0, 0, 1.0), (1, 0, -1.0), (0, 1, -1.0), (1, 1, 1.0)],
         p,
@@ -464,8 +554,14 @@ fn curvature(net: &[Homogeneous<3>], p: usize, q: usize) -> Curvature {
     );
     let (a_s, w_s) = (pf * first_s.0, pf * first_s.1);
     let (a_t, w_t) = (qf * first_t.0, qf * first_t.1);
-    let (a_ss, w_ss) = (pf * (pf - 1.0).max(0.0) * second_s.0, pf * (pf - 1.0).max(0.0) * second_s.1);
-    let (a_tt, w_tt) = (qf * (qf - 1.0).max(0.0) * second_t.0, qf * (qf - 1.0).max(0.0) * second_t.1);
+    let (a_ss, w_ss) = (
+        pf * (pf - 1.0).max(0.0) * second_s.0,
+        pf * (pf - 1.0).max(0.0) * second_s.1,
+    );
+    let (a_tt, w_tt) = (
+        qf * (qf - 1.0).max(0.0) * second_t.0,
+        qf * (qf - 1.0).max(0.0) * second_t.1,
+    );
     let (a_st, w_st) = (pf * qf * twist.0, pf * qf * twist.1);
     let s_s = (a_s + w_s * radius) / w_min;
     let s_t = (a_t + w_t * radius) / w_min;
@@ -504,4 +600,3 @@ impl UnionFind {
         }
     }
 }
-
