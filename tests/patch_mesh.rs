@@ -608,6 +608,51 @@ fn teapot_is_watertight_but_where_the_model_is_open() {
 }
 
 #[test]
+fn patches_joined_across_directions_are_welded() {
+    // Patch B's column j = 0 (a curve in u) is patch A's row i = 3 (a curve
+    // in v) reversed, and A needs many more cells across than B would
+    // alone: the counts must agree, and the two meshes join into a disk.
+    let mut rng = Rng(99);
+    let a: Vec<Vec<Point3<f64>>> = (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| Point3::new(i as f64, j as f64, rng.range(-1.0, 1.0)))
+                .collect()
+        })
+        .collect();
+    let shared: Vec<Point3<f64>> = a[3].iter().rev().copied().collect();
+    let b: Vec<Vec<Point3<f64>>> = (0..4)
+        .map(|i| {
+            (0..3)
+                .map(|j| {
+                    let x = shared[i];
+                    if j == 0 {
+                        x
+                    } else {
+                        Point3::new(x.x + j as f64, x.y + 0.1 * j as f64, x.z)
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let model = BezierPatches::new(vec![
+        BezierSurface::new(a).unwrap(),
+        BezierSurface::new(b).unwrap(),
+    ])
+    .unwrap();
+    let mesh = model.tessellate(1e-3).unwrap();
+    let counts = edge_counts(&mesh);
+    assert!(counts.values().all(|&c| c <= 2));
+    assert_eq!(
+        boundary_loops(&counts).len(),
+        1,
+        "one outline: the seam is closed"
+    );
+    let euler = mesh.positions.len() as i64 - counts.len() as i64 + mesh.triangles.len() as i64;
+    assert_eq!(euler, 1, "V − E + F of a disk");
+}
+
+#[test]
 fn closed_bspline_tube_is_watertight() {
     // A cylinder closed in v by repeating the first control column at the
     // end (clamped knots, the seam is a shared patch edge of equal control

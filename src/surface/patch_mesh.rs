@@ -191,7 +191,8 @@ pub(crate) fn tessellate_patches(
         .zip(&counts)
         .map(|(c, &(ns, nt))| {
             let (h, k) = (1.0 / ns as f64, 1.0 / nt as f64);
-            (h * h * c.ss + 2.0 * h * k * c.st + k * k * c.tt) / 8.0
+            // (1 + 16ε): the grid parameters i/n are rounded.
+            (h * h * c.ss + 2.0 * h * k * c.st + k * k * c.tt) / 8.0 * (1.0 + 16.0 * f64::EPSILON)
         })
         .fold(0.0_f64, f64::max)
         + rounding;
