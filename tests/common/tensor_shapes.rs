@@ -1,7 +1,24 @@
 //! Tensor-product test surfaces with closed forms.
 
-use revolve::NurbsSurface;
 use revolve::nalgebra::Point3;
+use revolve::{BezierSurface, NurbsSurface};
+
+/// The benches' folded bicubic patch: a sheared net whose inner points
+/// alternate between heights ±0.4, so that a ray can meet it several times.
+pub fn folded_bicubic() -> BezierSurface {
+    let net = (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
+                    let z = if (i + j) % 2 == 0 { 0.4 } else { -0.4 };
+                    Point3::new(x + 0.3 * (j as f64 - 1.5).powi(2), y, z)
+                })
+                .collect()
+        })
+        .collect();
+    BezierSurface::new(net).unwrap()
+}
 
 /// The octant x, y, z ≥ 0 of the sphere of radius `r`: a quarter meridian
 /// (pole to equator) in `u` times a quarter turn in `v`. The row `u = 0` is
