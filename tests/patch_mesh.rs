@@ -423,8 +423,12 @@ fn nurbs_sphere_octant_is_within_its_bound() {
     check_structure(&mesh, surface.domain());
     // Vertices on the sphere; the triangles inside it by at most the bound
     // (there the distance to the surface is exactly r − |x|).
-    for x in &mesh.positions {
+    // Vertex normals are the sphere's (radial), all on one side, the pole's
+    // included (its limit normal).
+    let side = mesh.normals[0].dot(&mesh.positions[0].coords).signum();
+    for (x, n) in mesh.positions.iter().zip(&mesh.normals) {
         assert!((x.coords.norm() - r).abs() < 1e-13);
+        assert!(n.dot(&x.coords) * side / r > 1.0 - 1e-9, "{x:?}: {n:?}");
     }
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
