@@ -376,5 +376,8 @@ fn grazing_rays_on_folded_bicubics_agree_with_the_reference() {
     }
     eprintln!("{tally:?}");
     assert!(tally.excluded * 10 < tally.rays, "{tally:?}");
-    assert!(tally.by_count[1] + tally.by_count[2] > 100, "{tally:?}");
+    // Every ray passes through a point of its patch, and the folds give
+    // many of them more hits.
+    assert_eq!(tally.by_count[0], 0, "{tally:?}");
+    assert!(tally.by_count[3] + tally.by_count[4] > 30, "{tally:?}");
 }

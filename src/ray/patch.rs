@@ -139,6 +139,7 @@ pub(crate) fn intersect(
         target: tol.relative * scale,
         iterations: tol.max_iterations,
         t_floor,
+        t_min,
     };
     let mut on_stack = [[0.0_f64; 4]; 3 * STACK_NET];
     let mut on_heap = Vec::new();
@@ -786,6 +787,8 @@ struct Frame {
     iterations: u32,
     /// Hits at or below this ray parameter are the origin's own.
     t_floor: f64,
+    /// The ray parameter searched from.
+    t_min: f64,
 }
 
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
@@ -828,12 +831,20 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
             continue;
         }
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
-        let jet = tensor_jet(&patch.net, cols, s, t, 0);
-        let x = jet[0][0].wp / jet[0][0].w;
+        let jet = tensor_jet(&patch.net, cols, s, t, 1);
+        let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
+        let x = h.wp / h.w;
         let r = x - f.o;
         let along = f.dh.dot(&r);
         let off = (r - f.dh * along).norm();
-        if off <= f.accept {
+        // The point is uncertain by `accept` off the surface, so its ray
+        // parameter by `accept/(|d|·cos)` for the angle of incidence: a
+        // root that close to `t_min` is the ray's own start (a secondary
+        // ray's origin on the surface), however grazing.
+        let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
+        let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
+        let own = along / f.dn - f.t_min <= f.accept / (f.dn * if cos.is_nan() { 1.0 } else { cos });
+        if off <= f.accept && !own {
             return Some(PatchHit {
                 patch: k,
                 t: along / f.dn,
