@@ -63,8 +63,8 @@ use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::{
-    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Curve, Nurbs, NurbsSurface,
-    RationalBezier, Ray, Revolution, Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Curve, Nurbs,
+    NurbsSurface, RationalBezier, Ray, Revolution, Tolerance,
 };
 
 /// A crate error as the deserializer's error, with the crate's message.
