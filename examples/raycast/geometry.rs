@@ -30,6 +30,9 @@ mod shapes;
 #[path = "geometry/surface.rs"]
 mod surface;
 #[cfg(test)]
+#[path = "geometry/surface_tests.rs"]
+mod surface_tests;
+#[cfg(test)]
 #[path = "geometry/tests.rs"]
 mod tests;
 #[path = "geometry/transform.rs"]
