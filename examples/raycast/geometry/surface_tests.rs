@@ -114,7 +114,7 @@ fn a_nurbs_surface_is_hit_on_its_exact_cylinder() {
 fn teapot() -> Vec<BezierSurface> {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let text = "PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 45 width 4 height 4 }\n\
-                Group { BezierPatches { file patches/teapot.txt } }";
+                Group { BezierPatches { file data/teapot.txt } }";
     let scene = crate::parse::parse_str(text, &scenes.join("test.txt")).unwrap();
     let Shape::Surface(body) = &scene.objects[0].shape else {
         panic!("not a surface");

@@ -124,8 +124,8 @@ fn teapot_by_hand(text: &str) -> Vec<Vec<Vec<Point3<f64>>>> {
 #[test]
 fn the_bundled_teapot_has_its_32_bicubic_patches() {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let text = std::fs::read_to_string(scenes.join("patches/teapot.txt")).unwrap();
-    let scene = parse_str(&model_scene("patches/teapot.txt"), &scenes.join("test.txt"))
+    let text = std::fs::read_to_string(scenes.join("data/teapot.txt")).unwrap();
+    let scene = parse_str(&model_scene("data/teapot.txt"), &scenes.join("test.txt"))
         .unwrap_or_else(|e| panic!("{e}"));
     let models = models(&scene);
     let patches = patches(&models[0]);
