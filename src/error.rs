@@ -288,6 +288,8 @@ pub enum Error {
         /// The length of that row.
         found: usize,
     },
+    /// A model made of patches was given none.
+    NoPatches,
 }
 
 impl fmt::Display for Error {
@@ -507,6 +509,10 @@ impl fmt::Display for Error {
             } => write!(
                 f,
                 "ragged grid: row {row} has {found} entries, expected {expected} like the first row"
+            ),
+            Error::NoPatches => write!(
+                f,
+                "a model made of patches needs at least one patch, got none"
             ),
         }
     }

@@ -105,7 +105,9 @@ pub use error::Error;
 pub use ray::newton::{NewtonIntersector, NewtonReport};
 pub use ray::{ExactReport, Hit, Intersect, Ray, Tolerance};
 pub use surface::BoundedSurface;
-pub use surface::{BSplineSurface, BezierPatch, BezierSurface, NurbsSurface, RationalBezierPatch};
+pub use surface::{
+    BSplineSurface, BezierPatch, BezierPatches, BezierSurface, NurbsSurface, RationalBezierPatch,
+};
 pub use surface::{Mesh, Revolution, Surface};
 
 /// The README's code blocks, compiled and run as doctests.

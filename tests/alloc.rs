@@ -359,3 +359,27 @@ fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
         assert!(hits > 100, "only {hits} hits");
     }
 }
+
+/// Newell's teapot as a [`BezierPatches`](revolve::BezierPatches) model:
+/// the 32 bicubic patches with their raised nets and hierarchy hold at most
+/// 48 KiB, and a ray through the model allocates nothing.
+#[test]
+fn the_teapot_model_is_small_and_does_not_allocate_per_ray() {
+    use revolve::nalgebra::Vector3;
+    use revolve::{BezierPatches, Intersect, Ray};
+    let patches = common::teapot::patches();
+    let (model, bytes) = held_by(|| BezierPatches::new(patches).unwrap());
+    assert!(bytes <= 48 * 1024, "teapot model holds {bytes} bytes");
+    let bounds = model.bounds();
+    let mut rng = common::Rng(31);
+    let mut hits = 0;
+    for _ in 0..500 {
+        let dir: Vector3<f64> = rng.direction();
+        let ray = Ray::new(rng.point_in(&bounds) - dir * 10.0, dir);
+        let mut hit = None;
+        let count = allocations_in(|| hit = model.intersect(&ray, 0.0, f64::INFINITY));
+        assert_eq!(count, 0, "{ray:?}");
+        hits += usize::from(hit.is_some());
+    }
+    assert!(hits > 100, "only {hits} hits");
+}

@@ -36,7 +36,7 @@ pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
 pub(crate) use bspline::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use elevate::MAX_ELEVATED_DEGREE;
-pub(crate) use elevate::elevate_spline;
+pub(crate) use elevate::{elevate_bezier, elevate_spline};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 pub(crate) use homogeneous::{Homogeneous, quotient_rule};

@@ -29,8 +29,9 @@
 //! intersectors; no hit is reported that is not on the surface to the
 //! tolerance.
 
-use crate::surface::tensor_patch::{Patch, PatchTable, tensor_jet};
-use crate::{Aabb, Ray, Tolerance};
+use super::patch_tree::{PatchTree, Slab};
+use crate::surface::tensor_patch::{Patch, tensor_jet};
+use crate::{Ray, Tolerance};
 use nalgebra::Vector3;
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
@@ -52,42 +53,11 @@ const STACK: usize = 2 * 2 * 14 + 4;
 /// A hit in a surface's own parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PatchHit {
+    /// Index of the patch hit.
+    pub(crate) patch: usize,
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) v: f64,
-}
-
-/// The per-surface data: each patch's box (of its projected control net).
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct PatchBoxes {
-    boxes: Vec<Aabb>,
-    /// Largest control-point coordinate: the scale of the tolerance.
-    scale: f64,
-    /// The union of the boxes.
-    pub(crate) all: Aabb,
-}
-
-impl PatchBoxes {
-    /// The boxes of `patches`.
-    pub(crate) fn new(patches: &[Patch]) -> Self {
-        let mut scale = 0.0_f64;
-        let boxes: Vec<Aabb> = patches
-            .iter()
-            .map(|p| {
-                let mut b = Aabb::EMPTY;
-                for h in &p.net {
-                    let x = nalgebra::Point3::from(h.wp / h.w);
-                    scale = scale.max(x.coords.amax());
-                    b = b.include(&x);
-                }
-                b
-            })
-            .collect();
-        let pad = 64.0 * f64::EPSILON * scale;
-        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
-        let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
-        PatchBoxes { boxes, scale, all }
-    }
 }
 
 /// One box of the search: its parameter ranges within the patch, its depth
@@ -99,17 +69,22 @@ struct Cell {
     depth: u32,
 }
 
-/// Patches whose entry order is kept on the stack; more are sorted on the
-/// heap.
-const SORTED: usize = 64;
-
 /// Control points per patch whose search runs on the stack (bicubic).
 const STACK_NET: usize = 16;
 
-/// The nearest hit of `ray` with `t_min < t < t_max` on the surface of
-/// `table`.
+/// The patches a search runs over: their common degrees, the patches and
+/// the hierarchy over them.
+#[derive(Clone, Copy)]
+pub(crate) struct PatchSet<'a> {
+    pub(crate) degrees: (usize, usize),
+    pub(crate) patches: &'a [Patch],
+    pub(crate) tree: &'a PatchTree,
+}
+
+/// The nearest hit of `ray` with `t_min < t < t_max` on the patches of
+/// `set`.
 pub(crate) fn intersect(
-    table: &PatchTable,
+    set: PatchSet<'_>,
     ray: &Ray,
     t_min: f64,
     t_max: f64,
@@ -136,39 +111,12 @@ pub(crate) fn intersect(
     };
     let e1 = dh.cross(&helper).normalize();
     let e2 = dh.cross(&e1);
-    let boxes = &table.boxes;
-    let scale = boxes.scale.max(f64::MIN_POSITIVE);
+    let scale = set.tree.scale.max(f64::MIN_POSITIVE);
     let accept = (tol.relative * scale).max(ACCEPT * scale.max(o.amax()));
     // Hits within the position uncertainty of the origin are the origin.
     let t_floor = t_min + accept / dn;
-    let (p, q) = table.degrees;
-    let cols = q + 1;
-    let n = (p + 1) * cols;
-    let mut best: Option<PatchHit> = None;
-    let mut t_best = t_max;
-    // The patches whose box the ray enters, nearest first.
-    let mut few = [(0.0_f64, 0_usize); SORTED];
-    let mut many = Vec::new();
-    let mut count = 0;
-    for (k, b) in boxes.boxes.iter().enumerate() {
-        if let Some((enter, _)) = b.clip(ray, t_floor, t_best) {
-            if count < SORTED {
-                few[count] = (enter, k);
-            } else {
-                if many.is_empty() {
-                    many.extend_from_slice(&few);
-                }
-                many.push((enter, k));
-            }
-            count += 1;
-        }
-    }
-    let order: &mut [(f64, usize)] = if count <= SORTED {
-        &mut few[..count]
-    } else {
-        &mut many
-    };
-    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let (p, q) = set.degrees;
+    let n = (p + 1) * (q + 1);
     let frame = Frame {
         o,
         dn,
@@ -178,6 +126,7 @@ pub(crate) fn intersect(
         accept,
         target: tol.relative * scale,
         iterations: tol.max_iterations,
+        t_floor,
     };
     let mut on_stack = [[0.0_f64; 4]; STACK_NET * (STACK + 1)];
     let mut on_heap = Vec::new();
@@ -187,100 +136,121 @@ pub(crate) fn intersect(
         on_heap.resize(n * (STACK + 1), [0.0; 4]);
         &mut on_heap
     };
-    for &(enter, k) in order.iter() {
-        if enter > t_best {
-            break;
+    let mut best: Option<PatchHit> = None;
+    let slab = Slab::new(ray);
+    set.tree.visit(&slab, t_floor, t_max, |k, _| {
+        let t_best = best.map_or(t_max, |h| h.t);
+        if let Some(hit) = search_patch(set, k, &frame, buf, t_best) {
+            best = Some(hit);
+            return hit.t;
         }
-        let patch = &table.patches[k];
-        // Coefficients (α, β, γ, w) of the patch.
-        let mut magnitude = 0.0_f64;
-        for (slot, h) in buf[..n].iter_mut().zip(&patch.net) {
-            let rel = h.wp - o * h.w;
-            *slot = [e1.dot(&rel), e2.dot(&rel), dh.dot(&rel), h.w];
-            magnitude = magnitude.max(h.wp.abs().sum() + o.abs().sum() * h.w);
+        t_best
+    });
+    best
+}
+
+/// The nearest hit on patch `k` of `set` with `frame.t_floor < t < t_best`,
+/// searched with the scratch space `buf` (`(STACK + 1)·n` entries for `n`
+/// control points).
+fn search_patch(
+    set: PatchSet<'_>,
+    k: usize,
+    frame: &Frame,
+    buf: &mut [[f64; 4]],
+    mut t_best: f64,
+) -> Option<PatchHit> {
+    let (p, q) = set.degrees;
+    let n = (p + 1) * (q + 1);
+    let patch = &set.patches[k];
+    let (o, e1, e2, dh, dn) = (frame.o, frame.e1, frame.e2, frame.dh, frame.dn);
+    let t_floor = frame.t_floor;
+    let mut best = None;
+    // Coefficients (α, β, γ, w) of the patch.
+    let mut magnitude = 0.0_f64;
+    for (slot, h) in buf[..n].iter_mut().zip(&patch.net) {
+        let rel = h.wp - o * h.w;
+        *slot = [e1.dot(&rel), e2.dot(&rel), dh.dot(&rel), h.w];
+        magnitude = magnitude.max(h.wp.abs().sum() + o.abs().sum() * h.w);
+    }
+    let err = 8.0 * f64::EPSILON * magnitude;
+    let mut cells = [Cell {
+        s: (0.0, 1.0),
+        t: (0.0, 1.0),
+        depth: 0,
+    }; STACK];
+    let mut len = 1;
+    // Cell i's coefficients live at buf[(i + 1)·n ..]; slot 0 is the
+    // patch's own.
+    let (head, rest) = buf.split_at_mut(n);
+    rest[..n].copy_from_slice(head);
+    while len > 0 {
+        len -= 1;
+        let cell = cells[len];
+        let coef = &rest[len * n..(len + 1) * n];
+        let bound = err * (1.0 + cell.depth as f64);
+        if excluded(coef, bound, t_floor * dn, t_best * dn) {
+            continue;
         }
-        let err = 8.0 * f64::EPSILON * magnitude;
-        let mut cells = [Cell {
-            s: (0.0, 1.0),
-            t: (0.0, 1.0),
-            depth: 0,
-        }; STACK];
-        let mut len = 1;
-        // Cell i's coefficients live at buf[(i + 1)·n ..]; slot 0 is the
-        // patch's own.
-        let (head, rest) = buf.split_at_mut(n);
-        rest[..n].copy_from_slice(head);
-        while len > 0 {
-            len -= 1;
-            let cell = cells[len];
-            let coef = &rest[len * n..(len + 1) * n];
-            let bound = err * (1.0 + cell.depth as f64);
-            if excluded(coef, bound, t_floor * dn, t_best * dn) {
-                continue;
+        let (ws, wt) = (cell.s.1 - cell.s.0, cell.t.1 - cell.t.0);
+        if (ws <= SMALL && wt <= SMALL) || len + 2 >= STACK {
+            if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
+                if hit.t > t_floor && hit.t < t_best {
+                    t_best = hit.t;
+                    best = Some(hit);
+                }
             }
-            let (ws, wt) = (cell.s.1 - cell.s.0, cell.t.1 - cell.t.0);
-            if (ws <= SMALL && wt <= SMALL) || len + 2 >= STACK {
-                if let Some(hit) = polish(table, k, &frame, cell) {
+            continue;
+        }
+        // A box that holds exactly one root (Krawczyk's test) is
+        // finished by Newton's method if it lands inside the box.
+        if ws.max(wt) <= TRY_UNIQUE && unique_root(coef, p, q, bound) {
+            if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
+                let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
+                let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
+                let inside = s_hit >= cell.s.0 - SLACK
+                    && s_hit <= cell.s.1 + SLACK
+                    && t_hit >= cell.t.0 - SLACK
+                    && t_hit <= cell.t.1 + SLACK;
+                if inside {
                     if hit.t > t_floor && hit.t < t_best {
                         t_best = hit.t;
                         best = Some(hit);
                     }
-                }
-                continue;
-            }
-            // A box that holds exactly one root (Krawczyk's test) is
-            // finished by Newton's method if it lands inside the box.
-            if ws.max(wt) <= TRY_UNIQUE && unique_root(coef, p, q, bound) {
-                if let Some(hit) = polish(table, k, &frame, cell) {
-                    let patch = &table.patches[k];
-                    let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
-                    let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
-                    let inside = s_hit >= cell.s.0 - SLACK
-                        && s_hit <= cell.s.1 + SLACK
-                        && t_hit >= cell.t.0 - SLACK
-                        && t_hit <= cell.t.1 + SLACK;
-                    if inside {
-                        if hit.t > t_floor && hit.t < t_best {
-                            t_best = hit.t;
-                            best = Some(hit);
-                        }
-                        continue;
-                    }
+                    continue;
                 }
             }
-            // Halve in the wider parameter; the nearer half is searched
-            // first (pushed last).
-            let split_s = ws >= wt;
-            let (lo, hi) = rest.split_at_mut((len + 1) * n);
-            let parent = &mut lo[len * n..];
-            let child = &mut hi[..n];
-            halve(parent, child, p, q, split_s);
-            let (first, second) = if split_s {
-                let mid = 0.5 * (cell.s.0 + cell.s.1);
-                ((cell.s.0, mid), (mid, cell.s.1))
-            } else {
-                let mid = 0.5 * (cell.t.0 + cell.t.1);
-                ((cell.t.0, mid), (mid, cell.t.1))
-            };
-            let make = |r: (f64, f64)| Cell {
-                s: if split_s { r } else { cell.s },
-                t: if split_s { cell.t } else { r },
-                depth: cell.depth + 1,
-            };
-            // parent now holds the first half, child the second.
-            let near_first = min_distance(parent) <= min_distance(child);
-            if near_first {
-                // Second half below, first half on top.
-                swap_slices(parent, child);
-                cells[len] = make(second);
-                cells[len + 1] = make(first);
-                // After the swap: slot len = second, slot len + 1 = first.
-            } else {
-                cells[len] = make(first);
-                cells[len + 1] = make(second);
-            }
-            len += 2;
         }
+        // Halve in the wider parameter; the nearer half is searched
+        // first (pushed last).
+        let split_s = ws >= wt;
+        let (lo, hi) = rest.split_at_mut((len + 1) * n);
+        let parent = &mut lo[len * n..];
+        let child = &mut hi[..n];
+        halve(parent, child, p, q, split_s);
+        let (first, second) = if split_s {
+            let mid = 0.5 * (cell.s.0 + cell.s.1);
+            ((cell.s.0, mid), (mid, cell.s.1))
+        } else {
+            let mid = 0.5 * (cell.t.0 + cell.t.1);
+            ((cell.t.0, mid), (mid, cell.t.1))
+        };
+        let make = |r: (f64, f64)| Cell {
+            s: if split_s { r } else { cell.s },
+            t: if split_s { cell.t } else { r },
+            depth: cell.depth + 1,
+        };
+        // parent now holds the first half, child the second.
+        let near_first = min_distance(parent) <= min_distance(child);
+        if near_first {
+            // Second half below, first half on top.
+            swap_slices(parent, child);
+            cells[len] = make(second);
+            cells[len + 1] = make(first);
+        } else {
+            cells[len] = make(first);
+            cells[len + 1] = make(second);
+        }
+        len += 2;
     }
     best
 }
@@ -501,14 +471,15 @@ struct Frame {
     accept: f64,
     target: f64,
     iterations: u32,
+    /// Hits at or below this ray parameter are the origin's own.
+    t_floor: f64,
 }
 
-/// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over patch `k` from the
+/// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
+/// `k`, with `cols` control points a row) from the
 /// centre of `cell` (then its corners); the hit if a start converges to a
 /// point of the patch within the acceptance.
-fn polish(table: &PatchTable, k: usize, f: &Frame, cell: Cell) -> Option<PatchHit> {
-    let patch = &table.patches[k];
-    let cols = table.degrees.1 + 1;
+fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option<PatchHit> {
     let starts = [
         (0.5 * (cell.s.0 + cell.s.1), 0.5 * (cell.t.0 + cell.t.1)),
         (cell.s.0, cell.t.0),
@@ -551,6 +522,7 @@ fn polish(table: &PatchTable, k: usize, f: &Frame, cell: Cell) -> Option<PatchHi
         let off = (r - f.dh * along).norm();
         if off <= f.accept {
             return Some(PatchHit {
+                patch: k,
                 t: along / f.dn,
                 u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
                 v: patch.v.0 + (patch.v.1 - patch.v.0) * t,

@@ -1,6 +1,7 @@
 //! Parametric surfaces: the [`Surface`] trait, surfaces of revolution and
 //! tensor-product (Bézier, B-spline, NURBS) surfaces.
 
+mod bezier_patches;
 mod bezier_surface;
 mod bspline_surface;
 mod mesh;
@@ -9,6 +10,7 @@ mod profile_approximation;
 mod revolution;
 pub(crate) mod tensor_patch;
 
+pub use bezier_patches::BezierPatches;
 pub use bezier_surface::BezierSurface;
 pub use bspline_surface::{BSplineSurface, BezierPatch};
 pub use mesh::Mesh;

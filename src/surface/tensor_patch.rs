@@ -11,7 +11,8 @@
 
 use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::{Homogeneous, validate_points, validate_weights};
-use crate::ray::patch::{PatchBoxes, intersect};
+use crate::ray::patch::{PatchSet, intersect};
+use crate::ray::patch_tree::PatchTree;
 use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -59,7 +60,7 @@ macro_rules! tensor_surface_traits {
             }
 
             fn bounds(&self) -> $crate::Aabb {
-                self.$($path).+.boxes.all
+                self.$($path).+.tree.all
             }
         }
     };
@@ -95,8 +96,9 @@ pub(crate) struct PatchTable {
     /// The largest extent of the box of the projected control points
     /// (the scale of the normal's degeneracy test), computed once.
     extent: f64,
-    /// The patches' boxes for ray intersection, computed once.
-    pub(crate) boxes: PatchBoxes,
+    /// The hierarchy over the patches' boxes for ray intersection,
+    /// computed once.
+    pub(crate) tree: PatchTree,
 }
 
 /// Value and derivatives up to order 2 (`d[a][b] = ∂ᵃ⁺ᵇ/∂uᵃ∂vᵇ`, `a + b ≤ 2`).
@@ -228,14 +230,14 @@ impl PatchTable {
                 b = b.include(&Point3::from(h.wp / h.w));
             }
         }
-        let boxes = PatchBoxes::new(&patches);
+        let tree = PatchTree::new(&patches);
         PatchTable {
             degrees,
             u_breaks,
             v_breaks,
             patches,
             extent: b.extent().amax(),
-            boxes,
+            tree,
         }
     }
 
@@ -283,7 +285,7 @@ impl PatchTable {
     /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; facing the ray where
     /// no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let found = intersect(self, ray, t_min, t_max, &Tolerance::default())?;
+        let found = intersect(self.search_set(), ray, t_min, t_max, &Tolerance::default())?;
         let point = self.eval(found.u, found.v);
         let normal = self
             .normal(found.u, found.v)
@@ -294,6 +296,15 @@ impl PatchTable {
             normal,
             uv: (found.u, found.v),
         })
+    }
+
+    /// What the ray–patch search runs over.
+    pub(crate) fn search_set(&self) -> PatchSet<'_> {
+        PatchSet {
+            degrees: self.degrees,
+            patches: &self.patches,
+            tree: &self.tree,
+        }
     }
 
     /// `S(u, v)`.

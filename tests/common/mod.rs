@@ -15,12 +15,14 @@
 //! - Rational revolutions: [`conic_profiles`] (the sphere's and the torus's
 //!   NURBS profiles), [`closed_forms`] (their ray equations with exact
 //!   coefficients) and [`exact_roots`] (exact real-root isolation).
+//! - Tensor surfaces: [`tensor_shapes`] and Newell's [`teapot`].
 
 #![allow(dead_code)]
 
 pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
+pub mod teapot;
 pub mod tensor_shapes;
 
 use revolve::nalgebra::{Point2, Point3, Vector3};

@@ -1,0 +1,162 @@
+//! A model made of many Bézier patches (Newell's teapot is 32 bicubic ones),
+//! intersected through a hierarchy over the patches.
+
+use super::tensor_patch::Patch;
+use crate::bernstein::Coefficient;
+use crate::curve::{Homogeneous, elevate_bezier};
+use crate::ray::patch::{PatchSet, intersect};
+use crate::ray::patch_tree::PatchTree;
+use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Ray, Surface, Tolerance};
+use nalgebra::Unit;
+
+/// A model made of Bézier patches, such as Newell's teapot: each patch a
+/// [`BezierSurface`] with its own `(u, v) ∈ [0, 1]²`.
+///
+/// A ray does not test every patch: the patches' boxes (of their control
+/// nets, which contain them by the convex hull property) are held in a
+/// bounding-volume hierarchy, built once by the surface area heuristic, and
+/// a ray visits only the boxes it enters, nearer ones first, skipping those
+/// beyond its best hit so far. Each patch it reaches gets the certified
+/// search of [`BezierSurface`]'s [`Intersect`]. Patches of lower degrees are
+/// raised to the model's largest degrees for the search (degree elevation
+/// changes the control net, not the surface or its parameters).
+///
+/// [`intersect`](Intersect::intersect) gives the nearest hit over all
+/// patches, with `Hit::uv` in the hit patch's parameters;
+/// [`intersect_patch`](Self::intersect_patch) also says which patch.
+///
+/// ```
+/// use revolve::{BezierPatches, BezierSurface, Intersect, Ray};
+/// use revolve::nalgebra::{Point3, Vector3};
+///
+/// // Two unit squares side by side in the plane z = 0.
+/// let square = |x0: f64| {
+///     BezierSurface::new(vec![
+///         vec![Point3::new(x0, 0.0, 0.0), Point3::new(x0, 1.0, 0.0)],
+///         vec![Point3::new(x0 + 1.0, 0.0, 0.0), Point3::new(x0 + 1.0, 1.0, 0.0)],
+///     ])
+/// };
+/// let model = BezierPatches::new(vec![square(0.0)?, square(1.0)?])?;
+/// let ray = Ray::new(Point3::new(1.5, 0.25, 1.0), Vector3::new(0.0, 0.0, -1.0));
+/// let (patch, hit) = model.intersect_patch(&ray, 0.0, f64::INFINITY).unwrap();
+/// assert_eq!(patch, 1);
+/// assert!((hit.t - 1.0).abs() < 1e-15);
+/// assert!((hit.uv.0 - 0.5).abs() < 1e-15 && (hit.uv.1 - 0.25).abs() < 1e-15);
+/// # Ok::<(), revolve::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct BezierPatches {
+    surfaces: Vec<BezierSurface>,
+    /// The largest degrees `(p, q)` over the patches.
+    degrees: (usize, usize),
+    /// The patches' nets raised to `degrees`, homogeneous with unit
+    /// weights.
+    patches: Vec<Patch>,
+    tree: PatchTree,
+}
+
+impl BezierPatches {
+    /// The model made of `patches`.
+    ///
+    /// # Errors
+    /// [`Error::NoPatches`] for an empty list.
+    pub fn new(patches: Vec<BezierSurface>) -> Result<Self, Error> {
+        if patches.is_empty() {
+            return Err(Error::NoPatches);
+        }
+        let degrees = patches.iter().fold((0, 0), |(p, q), s| {
+            let (a, b) = s.degrees();
+            (p.max(a), q.max(b))
+        });
+        let nets: Vec<Patch> = patches
+            .iter()
+            .map(|s| Patch {
+                u: (0.0, 1.0),
+                v: (0.0, 1.0),
+                net: raised_net(s, degrees),
+            })
+            .collect();
+        let tree = PatchTree::new(&nets);
+        Ok(BezierPatches {
+            surfaces: patches,
+            degrees,
+            patches: nets,
+            tree,
+        })
+    }
+
+    /// The patches, in the order given.
+    pub fn patches(&self) -> &[BezierSurface] {
+        &self.surfaces
+    }
+
+    /// The number of patches (at least one).
+    pub fn len(&self) -> usize {
+        self.surfaces.len()
+    }
+
+    /// Always `false`: a model has at least one patch.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The nearest hit with `t_min < t < t_max` and the index of the patch
+    /// it is on, or `None` for a miss. The normal follows that patch's
+    /// `∂S/∂u × ∂S/∂v` (its limit at collapsed edges, as on the teapot's lid;
+    /// facing the ray where the patch has no tangent plane).
+    pub fn intersect_patch(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, Hit)> {
+        let set = PatchSet {
+            degrees: self.degrees,
+            patches: &self.patches,
+            tree: &self.tree,
+        };
+        let found = intersect(set, ray, t_min, t_max, &Tolerance::default())?;
+        let surface = &self.surfaces[found.patch];
+        let normal = surface
+            .normal(found.u, found.v)
+            .or_else(|| Unit::try_new(-ray.dir / ray.dir.amax(), 0.0))?;
+        let hit = Hit {
+            t: found.t,
+            point: surface.eval(found.u, found.v),
+            normal,
+            uv: (found.u, found.v),
+        };
+        Some((found.patch, hit))
+    }
+}
+
+/// The homogeneous net of `surface` raised to `degrees` (each row in `v`,
+/// then each column in `u`).
+fn raised_net(surface: &BezierSurface, (p, q): (usize, usize)) -> Vec<Homogeneous<3>> {
+    let rows: Vec<Vec<Homogeneous<3>>> = surface
+        .points()
+        .iter()
+        .map(|row| {
+            let row: Vec<Homogeneous<3>> = row.iter().map(|x| Homogeneous::new(x, 1.0)).collect();
+            raise(&row, q)
+        })
+        .collect();
+    let mut net = vec![Homogeneous::zero(); (p + 1) * (q + 1)];
+    for j in 0..=q {
+        let column: Vec<Homogeneous<3>> = rows.iter().map(|row| row[j]).collect();
+        for (i, h) in raise(&column, p).into_iter().enumerate() {
+            net[i * (q + 1) + j] = h;
+        }
+    }
+    net
+}
+
+/// The Bézier coefficients `c` raised to `degree` (`≥ c.len() − 1`).
+fn raise<T: Coefficient>(c: &[T], degree: usize) -> Vec<T> {
+    elevate_bezier(c, degree + 1 - c.len())
+}
+
+impl Intersect for BezierPatches {
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.intersect_patch(ray, t_min, t_max).map(|(_, hit)| hit)
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.tree.all
+    }
+}
