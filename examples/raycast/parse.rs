@@ -99,10 +99,10 @@ mod render;
 mod resources;
 #[path = "parse/shapes.rs"]
 mod shapes;
-#[path = "parse/surfaces.rs"]
-mod surfaces;
 #[path = "parse/suggest.rs"]
 mod suggest;
+#[path = "parse/surfaces.rs"]
+mod surfaces;
 #[cfg(test)]
 #[path = "parse/tests.rs"]
 mod tests;

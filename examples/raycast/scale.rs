@@ -11,8 +11,8 @@
 //! [`EPSILON_RELATIVE`] × scale off the surface, along the normal on the side
 //! they leave by, and ignore hits closer than that.
 
-use revolve::{Aabb, Intersect};
 use revolve::nalgebra::{Matrix4, Point3};
+use revolve::{Aabb, Intersect};
 
 use crate::scene::{Light, RevolutionBody, Scene, Shape};
 

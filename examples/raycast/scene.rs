@@ -9,7 +9,8 @@ use std::sync::Arc;
 
 use revolve::nalgebra::{Matrix4, Point3, Vector3};
 use revolve::{
-    Aabb, BSpline, BSplineSurface, Bezier, BezierSurface, Intersect, Nurbs, NurbsSurface, Revolution,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Intersect, Nurbs,
+    NurbsSurface, Revolution,
 };
 
 /// Linear RGB, nominally in `[0, 1]` (light colours may exceed 1).
@@ -119,22 +120,25 @@ pub enum SurfaceBody {
     BSpline(BSplineSurface),
     /// A `BsplineSurface` or `BezierSurface` with a weighted control point.
     Nurbs(NurbsSurface),
-    /// The patches of a `BezierPatches` file, in file order.
-    Patches(Vec<BezierSurface>),
+    /// The patches of a `BezierPatches` file, in file order, behind
+    /// revolve's hierarchy.
+    Patches(BezierPatches),
 }
 
 impl SurfaceBody {
-    /// revolve's box around everything the body can be hit at (the union
-    /// of the patches' boxes for a model).
-    pub fn bounds(&self) -> Aabb {
+    /// The body as revolve's ray target.
+    pub fn target(&self) -> &dyn Intersect {
         match self {
-            SurfaceBody::Bezier(s) => s.bounds(),
-            SurfaceBody::BSpline(s) => s.bounds(),
-            SurfaceBody::Nurbs(s) => s.bounds(),
-            SurfaceBody::Patches(patches) => patches
-                .iter()
-                .fold(Aabb::EMPTY, |b, p| b.union(&p.bounds())),
+            SurfaceBody::Bezier(s) => s,
+            SurfaceBody::BSpline(s) => s,
+            SurfaceBody::Nurbs(s) => s,
+            SurfaceBody::Patches(model) => model,
         }
+    }
+
+    /// revolve's box around everything the body can be hit at.
+    pub fn bounds(&self) -> Aabb {
+        self.target().bounds()
     }
 }
 

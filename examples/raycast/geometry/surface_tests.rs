@@ -1,11 +1,12 @@
 //! Surfaces and patch models in the world, against closed forms and, for
-//! a model's hierarchy, against every patch tried in turn.
+//! a model (revolve's hierarchy over its patches), against every patch
+//! tried in turn.
 
 use std::path::Path;
 use std::sync::Arc;
 
 use revolve::nalgebra::{Point3, Vector3};
-use revolve::{BSplineSurface, BezierSurface, Intersect, NurbsSurface, Ray};
+use revolve::{BSplineSurface, BezierPatches, BezierSurface, Intersect, NurbsSurface, Ray};
 
 use super::{IntersectStats, SurfaceHit, World};
 use crate::scene::{Camera, Material, Object, RenderSettings, Scene, Shape, SurfaceBody};
@@ -39,7 +40,9 @@ fn first_hit(w: &World, r: &Ray) -> Option<SurfaceHit> {
 
 /// Points of a `k × k` grid strictly inside `(0, 1)²`.
 fn inner_grid(k: u32) -> impl Iterator<Item = (f64, f64)> {
-    (1..k).flat_map(move |i| (1..k).map(move |j| (f64::from(i) / f64::from(k), f64::from(j) / f64::from(k))))
+    (1..k).flat_map(move |i| {
+        (1..k).map(move |j| (f64::from(i) / f64::from(k), f64::from(j) / f64::from(k)))
+    })
 }
 
 #[test]
@@ -57,7 +60,11 @@ fn a_bezier_patch_is_hit_where_its_closed_form_says() {
         assert!((h.point - Point3::new(x, y, x * y)).norm() < 1e-12);
         let n = Vector3::new(-y, -x, 1.0).normalize();
         assert!((h.normal.into_inner() - n).norm() < 1e-9, "{:?}", h.normal);
-        assert!((h.uv.0 - x).abs() < 1e-9 && (h.uv.1 - y).abs() < 1e-9, "{:?}", h.uv);
+        assert!(
+            (h.uv.0 - x).abs() < 1e-9 && (h.uv.1 - y).abs() < 1e-9,
+            "{:?}",
+            h.uv
+        );
     }
     // Beside the patch: no hit.
     assert!(first_hit(&w, &Ray::new(Point3::new(1.5, 0.5, 10.0), -Vector3::z())).is_none());
@@ -80,8 +87,16 @@ fn a_bspline_surface_has_its_uv_scaled_from_its_domain() {
     for (a, b) in inner_grid(6) {
         let (x, y) = (2.0 * a, 2.0 * b);
         let h = first_hit(&w, &Ray::new(Point3::new(x, y, 5.0), -Vector3::z())).expect("a hit");
-        assert!((h.point.z - x * (1.0 - x / 2.0)).abs() < 1e-12, "{}", h.point);
-        assert!((h.uv.0 - a).abs() < 1e-9 && (h.uv.1 - b).abs() < 1e-9, "{:?}", h.uv);
+        assert!(
+            (h.point.z - x * (1.0 - x / 2.0)).abs() < 1e-12,
+            "{}",
+            h.point
+        );
+        assert!(
+            (h.uv.0 - a).abs() < 1e-9 && (h.uv.1 - b).abs() < 1e-9,
+            "{:?}",
+            h.uv
+        );
     }
 }
 
@@ -119,17 +134,17 @@ fn teapot() -> Vec<BezierSurface> {
     let Shape::Surface(body) = &scene.objects[0].shape else {
         panic!("not a surface");
     };
-    let SurfaceBody::Patches(patches) = &**body else {
+    let SurfaceBody::Patches(model) = &**body else {
         panic!("not a patch model");
     };
-    patches.clone()
+    model.patches().to_vec()
 }
 
 #[test]
 fn the_teapot_lid_is_hit_at_its_knob() {
     // The knob's top is the collapsed edge of the lid's first patches, at
     // (0, 0, 3.15) in the classic data; its tangent plane is level.
-    let w = world(SurfaceBody::Patches(teapot()));
+    let w = world(SurfaceBody::Patches(BezierPatches::new(teapot()).unwrap()));
     let h = first_hit(&w, &Ray::new(Point3::new(0.0, 0.0, 10.0), -Vector3::z())).expect("a hit");
     assert!((h.t - 6.85).abs() < 1e-12, "t {}", h.t);
     assert!(h.normal.z.abs() > 1.0 - 1e-9, "{:?}", h.normal);
@@ -141,10 +156,14 @@ fn a_models_hierarchy_finds_the_nearest_patch() {
     // world's hit is the nearest of the hits of all 32 patches, each
     // intersected on its own.
     let patches = teapot();
-    let w = world(SurfaceBody::Patches(patches.clone()));
+    let w = world(SurfaceBody::Patches(
+        BezierPatches::new(patches.clone()).unwrap(),
+    ));
     let mut seed = 0x7ea_u64;
     let mut next = || {
-        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut hits = 0;
@@ -165,7 +184,10 @@ fn a_models_hierarchy_finds_the_nearest_patch() {
                 hits += 1;
                 assert_eq!(h.t, brute, "{ray:?}");
             }
-            None => assert!(brute.is_infinite(), "{ray:?} misses but a patch is hit at {brute}"),
+            None => assert!(
+                brute.is_infinite(),
+                "{ray:?} misses but a patch is hit at {brute}"
+            ),
         }
     }
     assert!(hits > 100, "only {hits} of 300 rays hit the teapot");

@@ -123,7 +123,11 @@ fn curve_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<CurveBlock> {
 
 /// The control points after `controls`, each `[x y z]`, or `[x y z w]` if
 /// `weighted`.
-pub(super) fn control_points(c: &mut Cursor<'_>, what: &str, weighted: bool) -> Result<Vec<Control>> {
+pub(super) fn control_points(
+    c: &mut Cursor<'_>,
+    what: &str,
+    weighted: bool,
+) -> Result<Vec<Control>> {
     let mut points = Vec::new();
     loop {
         let at = c.here();

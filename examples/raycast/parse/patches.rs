@@ -19,13 +19,14 @@
 //! offending number (the last line when the file ends too early): a count
 //! or index that is not a whole number, an index of 0 or beyond `V`, too few
 //! or too many numbers, a coordinate that is not a number, and revolve's own
-//! checks of each patch (`BezierSurface::new`).
+//! checks of each patch (`BezierSurface::new`). The patches make one
+//! revolve `BezierPatches` model (a hierarchy over the patches' boxes).
 
 use std::fmt;
 use std::path::Path;
 
-use revolve::BezierSurface;
 use revolve::nalgebra::Point3;
+use revolve::{BezierPatches, BezierSurface};
 
 use super::cursor::{Cursor, Result as ParseResult};
 use super::lexer::is_number;
@@ -72,10 +73,17 @@ impl fmt::Display for PatchFileError {
 
 type Result<T> = std::result::Result<T, PatchFileError>;
 
-/// Reads the patches file at `path`.
-pub(super) fn read_patches(path: &Path) -> Result<Vec<BezierSurface>> {
+/// Reads the patches file at `path` into a model.
+pub(super) fn read_patches(path: &Path) -> Result<BezierPatches> {
     let bytes = std::fs::read(path).map_err(PatchFileError::Io)?;
-    parse_patches(&String::from_utf8_lossy(&bytes))
+    let text = String::from_utf8_lossy(&bytes);
+    let patches = parse_patches(&text)?;
+    // The file holds at least one patch; revolve's refusal of an empty
+    // model cannot happen, but would be reported at the file's start.
+    BezierPatches::new(patches).map_err(|e| PatchFileError::Syntax {
+        line: 1,
+        message: e.to_string(),
+    })
 }
 
 /// The numbers of a patches file, each with its line, read in order.

@@ -73,14 +73,14 @@ impl Resources {
         if let Some(model) = self.patches.get(&full) {
             return Ok(Arc::clone(model));
         }
-        let patches = read_patches(&full).map_err(|e| {
+        let model = read_patches(&full).map_err(|e| {
             let message = match e {
                 PatchFileError::Io(e) => format!("cannot read patches file '{}': {e}", path.text),
                 e => format!("patches file '{}': {e}", path.text),
             };
             c.error(path.pos, message)
         })?;
-        let model = Arc::new(SurfaceBody::Patches(patches));
+        let model = Arc::new(SurfaceBody::Patches(model));
         self.patches.insert(full, Arc::clone(&model));
         Ok(model)
     }

@@ -30,8 +30,8 @@ use std::sync::Arc;
 use revolve::nalgebra::{Point1, Point3};
 use revolve::{BSpline, BSplineSurface, BezierSurface, Error, NurbsSurface};
 
-use super::curves::{Control, control_points, numbers};
 use super::cursor::{Cursor, Result};
+use super::curves::{Control, control_points, numbers};
 use super::lexer::{Pos, Token};
 use crate::scene::{Shape, SurfaceBody};
 
@@ -70,9 +70,9 @@ impl Direction {
             | Error::KnotTooLarge { index, .. }
             | Error::KnotGapTooSmall { index, .. }
             | Error::DecreasingKnots { index } => knot(index),
-            Error::KnotCount { .. } | Error::KnotMultiplicity { .. } | Error::EmptyDomain { .. } => {
-                Some(self.knots.1)
-            }
+            Error::KnotCount { .. }
+            | Error::KnotMultiplicity { .. }
+            | Error::EmptyDomain { .. } => Some(self.knots.1),
             Error::DegreeTooHigh { .. } => Some(self.degree.1),
             _ => None,
         }

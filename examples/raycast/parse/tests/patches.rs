@@ -37,7 +37,7 @@ fn models(scene: &crate::scene::Scene) -> Vec<Arc<SurfaceBody>> {
 /// The patches of a model.
 fn patches(body: &SurfaceBody) -> &[BezierSurface] {
     match body {
-        SurfaceBody::Patches(p) => p,
+        SurfaceBody::Patches(model) => model.patches(),
         _ => panic!("not a patch model"),
     }
 }
@@ -52,7 +52,9 @@ fn vertex(k: usize) -> Point3<f64> {
 /// `j` is vertex `16 − 4i − j`), the numbers spread over lines in an odd
 /// way, with comments.
 fn reversed_patch_file() -> String {
-    let mut text = String::from("# a test model\n1 # one patch\n16 15 14 13 12 11\n10 9 8 7 6 5 4 3 2 1\n16\n");
+    let mut text = String::from(
+        "# a test model\n1 # one patch\n16 15 14 13 12 11\n10 9 8 7 6 5 4 3 2 1\n16\n",
+    );
     for k in 1..=16 {
         let v = vertex(k);
         text += &format!("{} {}\n{}\n", v.x, v.y, v.z);
@@ -73,7 +75,11 @@ fn a_patches_file_gives_its_patches_row_by_row() {
     assert_eq!(patches[0].degrees(), (3, 3));
     for i in 0..4 {
         for j in 0..4 {
-            assert_eq!(patches[0].points()[i][j], vertex(16 - 4 * i - j), "({i}, {j})");
+            assert_eq!(
+                patches[0].points()[i][j],
+                vertex(16 - 4 * i - j),
+                "({i}, {j})"
+            );
         }
     }
 }
@@ -103,9 +109,18 @@ fn teapot_by_hand(text: &str) -> Vec<Vec<Vec<Point3<f64>>>> {
     let indices = &words[1..1 + 16 * count];
     let vertices: Vec<Point3<f64>> = words[2 + 16 * count..]
         .chunks(3)
-        .map(|c| Point3::new(c[0].parse().unwrap(), c[1].parse().unwrap(), c[2].parse().unwrap()))
+        .map(|c| {
+            Point3::new(
+                c[0].parse().unwrap(),
+                c[1].parse().unwrap(),
+                c[2].parse().unwrap(),
+            )
+        })
         .collect();
-    assert_eq!(vertices.len(), words[1 + 16 * count].parse::<usize>().unwrap());
+    assert_eq!(
+        vertices.len(),
+        words[1 + 16 * count].parse::<usize>().unwrap()
+    );
     indices
         .chunks(16)
         .map(|patch| {
@@ -185,7 +200,8 @@ fn a_missing_patches_file_is_refused_at_its_path() {
     assert_eq!(e.file, dir.0.join("scene.txt"));
     assert_eq!((e.line, e.column), (3, 24), "{e}");
     assert!(
-        e.message.starts_with("cannot read patches file 'no/teapot.txt': "),
+        e.message
+            .starts_with("cannot read patches file 'no/teapot.txt': "),
         "{e}"
     );
 }
@@ -193,7 +209,11 @@ fn a_missing_patches_file_is_refused_at_its_path() {
 #[test]
 fn an_index_out_of_range_is_refused_at_its_line() {
     let text = one_patch("1 2 3 4 5 6 7 8\n9 10 11 12 13 14 15 17");
-    assert_file_error(&text, 3, "patch 1 refers to vertex 17, but there are 16 vertices");
+    assert_file_error(
+        &text,
+        3,
+        "patch 1 refers to vertex 17, but there are 16 vertices",
+    );
     assert_file_error(
         &one_patch("0 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16"),
         2,

@@ -58,9 +58,7 @@ fn bezier_surface_reads_its_grid_row_by_row() {
 #[test]
 fn surface_keys_come_in_any_order() {
     let a = body_of(&format!("BezierSurface {{ {BILINEAR} }}"));
-    let b = body_of(
-        "BezierSurface { controls [0 0 0] [0 1 0] [1 0 0] [1 1 1] cols 2 rows 2 }",
-    );
+    let b = body_of("BezierSurface { controls [0 0 0] [0 1 0] [1 0 0] [1 1 1] cols 2 rows 2 }");
     let (SurfaceBody::Bezier(a), SurfaceBody::Bezier(b)) = (a, b) else {
         panic!("not Bézier surfaces");
     };
@@ -250,7 +248,11 @@ fn spline(u_knots: &str, v_knots: &str) -> String {
 fn a_wrong_knot_count_is_refused_at_its_knot_vector() {
     let line = spline("0 0 0 1 1", "0 0 1 1");
     let e = fail(&in_group(&line));
-    assert_eq!((e.line, e.column), (3, column_of(&line, "uKnots", 0)), "{e}");
+    assert_eq!(
+        (e.line, e.column),
+        (3, column_of(&line, "uKnots", 0)),
+        "{e}"
+    );
     assert_eq!(
         e.message,
         format!(
@@ -263,7 +265,11 @@ fn a_wrong_knot_count_is_refused_at_its_knot_vector() {
     );
     let line = spline("0 0 0 1 1 1", "0 0 1 1 1");
     let e = fail(&in_group(&line));
-    assert_eq!((e.line, e.column), (3, column_of(&line, "vKnots", 0)), "{e}");
+    assert_eq!(
+        (e.line, e.column),
+        (3, column_of(&line, "vKnots", 0)),
+        "{e}"
+    );
     assert_eq!(
         e.message,
         format!(
@@ -280,13 +286,10 @@ fn a_wrong_knot_count_is_refused_at_its_knot_vector() {
 fn a_decreasing_knot_is_refused_at_the_knot() {
     let line = spline("0 0 0 1 1 1", "0 0.5 0.25 1");
     let e = fail(&in_group(&line));
-    assert_eq!(
-        (e.line, e.column),
-        (3, column_of(&line, "0.25", 0)),
-        "{e}"
-    );
+    assert_eq!((e.line, e.column), (3, column_of(&line, "0.25", 0)), "{e}");
     assert!(
-        e.message.starts_with("invalid BsplineSurface (vKnots): knots must be non-decreasing"),
+        e.message
+            .starts_with("invalid BsplineSurface (vKnots): knots must be non-decreasing"),
         "{e}"
     );
 }
@@ -297,7 +300,10 @@ fn a_degree_too_high_for_the_rows_is_refused_at_the_degree() {
                 cols 2 controls [0 0 0] [0 1 0] [1 0 1] [1 1 1] [2 0 0] [2 1 0] }";
     let e = fail(&in_group(line));
     assert_eq!((e.line, e.column), (3, column_of(line, "3", 0)), "{e}");
-    assert!(e.message.starts_with("invalid BsplineSurface (uKnots): "), "{e}");
+    assert!(
+        e.message.starts_with("invalid BsplineSurface (uKnots): "),
+        "{e}"
+    );
 }
 
 #[test]
