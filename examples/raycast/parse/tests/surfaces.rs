@@ -330,3 +330,35 @@ fn missing_and_misplaced_keys_are_refused() {
         "duplicate 'rows' in BezierSurface",
     );
 }
+
+#[test]
+fn the_documented_examples_parse() {
+    // The two surface blocks of docs/scene-format.md, verbatim.
+    let objects = objects_of(
+        "BezierSurface {
+    rows 2  cols 3
+    controls [0 0 0] [0 1 1] [0 2 0]      # row 0 (u = 0), along v
+             [1 0 1] [1 1 2] [1 2 1]      # row 1 (u = 1)
+}
+BsplineSurface {
+    uDegree 2  vDegree 1
+    uKnots 0 0 0 1 1 1  vKnots 0 0 1 1
+    rows 3  cols 2
+    controls [1 0 0] [1 0 2]
+             [1 1 0 0.7071067811865476] [1 1 2 0.7071067811865476]
+             [0 1 0] [0 1 2]             # a quarter of the unit cylinder
+}",
+    );
+    let kinds: Vec<&str> = objects
+        .iter()
+        .map(|o| match &o.shape {
+            Shape::Surface(body) => match **body {
+                SurfaceBody::Bezier(_) => "Bezier",
+                SurfaceBody::Nurbs(_) => "Nurbs",
+                _ => "other",
+            },
+            _ => "not a surface",
+        })
+        .collect();
+    assert_eq!(kinds, ["Bezier", "Nurbs"]);
+}
