@@ -9,9 +9,10 @@
 //! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
 //! ```
 //!
-//! `ray_profile [glass|vase|cylinder|sphere|torus] [N] [--perpendicular] [--report]`:
+//! `ray_profile [glass|vase|cylinder|sphere|torus|teapot|folded] [N] [--perpendicular] [--report]`:
 //! the shape (default glass; the sphere and the torus are rational revolutions
-//! of NURBS arcs), the number of rays (default 100 000), rays perpendicular
+//! of NURBS arcs; the teapot and the folded bicubic are models of Bézier
+//! patches), the number of rays (default 100 000), rays perpendicular
 //! to the axis instead of in any direction, and the per-ray report.
 
 #[path = "../tests/common/mod.rs"]
@@ -19,7 +20,7 @@ mod common;
 
 use common::Rng;
 use revolve::nalgebra::{Point2, Vector3};
-use revolve::{BSpline, Bezier, Intersect, Nurbs, Ray, Revolution};
+use revolve::{BSpline, Bezier, BezierPatches, Intersect, Nurbs, Ray, Revolution};
 
 /// One of the profiled shapes.
 enum Shape {
@@ -30,6 +31,21 @@ enum Shape {
     /// The unit sphere (a half circle, two rational quarter arcs) or the
     /// torus of radii 1 and 0.25 (a full circle, four quarter arcs).
     Nurbs(Revolution<Nurbs<2>>),
+    /// Newell's teapot (32 bicubic patches) or the benches' folded bicubic
+    /// patch, as a model of Bézier patches.
+    Patches(BezierPatches),
+}
+
+/// The teapot or the folded patch as a model of Bézier patches.
+fn patches(teapot: bool) -> Result<Shape, String> {
+    let list = if teapot {
+        common::teapot::patches()
+    } else {
+        vec![common::tensor_shapes::folded_bicubic()]
+    };
+    BezierPatches::new(list)
+        .map(Shape::Patches)
+        .map_err(|e| e.to_string())
 }
 
 /// The unit sphere as a rational revolution.
@@ -55,12 +71,14 @@ fn main() -> Result<(), String> {
             "cylinder" => shape = Shape::Bezier(common::bezier(&common::CYLINDER)),
             "sphere" => shape = sphere()?,
             "torus" => shape = torus()?,
+            "teapot" => shape = patches(true)?,
+            "folded" => shape = patches(false)?,
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
             count => {
                 n = count
                     .parse()
-                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, a ray count, --perpendicular or --report"))?
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, teapot, folded, a ray count, --perpendicular or --report"))?
             }
         }
     }
@@ -68,6 +86,7 @@ fn main() -> Result<(), String> {
         Shape::Glass(s) => s.bounds(),
         Shape::Bezier(s) => s.bounds(),
         Shape::Nurbs(s) => s.bounds(),
+        Shape::Patches(s) => s.bounds(),
     };
     let mut rng = Rng(7);
     let radius = 2.0 * bounds.extent().norm();
@@ -94,6 +113,7 @@ fn main() -> Result<(), String> {
                 Shape::Glass(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
                 Shape::Bezier(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
                 Shape::Nurbs(s) => s.intersect_with_report(ray, 0.0, f64::INFINITY),
+                Shape::Patches(_) => return Err("--report is for revolutions".into()),
             };
             for (total, x) in totals.iter_mut().zip([
                 r.spans_entered,
@@ -110,6 +130,7 @@ fn main() -> Result<(), String> {
                 Shape::Glass(s) => s.intersect(ray, 0.0, f64::INFINITY),
                 Shape::Bezier(s) => s.intersect(ray, 0.0, f64::INFINITY),
                 Shape::Nurbs(s) => s.intersect(ray, 0.0, f64::INFINITY),
+                Shape::Patches(s) => s.intersect(ray, 0.0, f64::INFINITY),
             }
         };
         hits += usize::from(hit.is_some());

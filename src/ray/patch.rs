@@ -1,5 +1,5 @@
-//! Ray intersection for tensor-product surfaces by subdivision of the
-//! ray's two plane distances.
+//! Ray intersection for tensor-product surfaces by Bézier clipping and
+//! subdivision of the ray's two plane distances.
 //!
 //! The ray `o + t·d` is the intersection of two planes through it, with unit
 //! normals `e₁`, `e₂` perpendicular to `d`. On a rational Bézier patch
@@ -7,27 +7,37 @@
 //! surface where both `α = e₁·(A − w·o)` and `β = e₂·(A − w·o)` vanish; both
 //! are tensor Bernstein polynomials with coefficients `e·wᵢⱼ(Pᵢⱼ − o)`,
 //! computed once per ray and patch, and `γ = d̂·(A − w·o)` gives the distance
-//! along the ray, `γ/w`. A parameter box is discarded when all its `α`
-//! coefficients, or all its `β` coefficients, are of one sign beyond their
-//! rounding bound (the convex hull property: the polynomial then has that
-//! sign on the whole box), or when all its `γ/w` ratios lie outside the
-//! range still searched. Boxes that survive are halved (de Casteljau, in the
-//! parameter whose box is wider) until Krawczyk's test proves that a box
-//! holds exactly one root ([`unique_root`]) or the box is smaller than
-//! [`SMALL`]; Newton's method on the 2 × 2 system
-//! `(e₁·(S − o), e₂·(S − o)) = 0` then runs from the box's centre (and its
-//! corners if needed), and a point it reaches on the patch (inside the box,
-//! for a box proven to hold one root) with a residual within the tolerance
-//! is a hit.
-//! Boxes are visited nearest first along the ray (depth-first, the nearer
-//! half first) and the search stops at the best hit so far.
+//! along the ray, `γ/w`. Every coefficient carries a rounding bound that
+//! grows with each subdivision that made it.
 //!
-//! No root is discarded: a box is dropped only where a certain sign rules
-//! a hit out, so every hit lies in some small box; a transversal hit is then
-//! found by Newton's method from within `SMALL` of it. A ray that grazes the
-//! surface (a double root) may be found or not, as for the other
-//! intersectors; no hit is reported that is not on the surface to the
-//! tolerance.
+//! A parameter box is discarded when all its `α` coefficients, or all its
+//! `β` coefficients, are of one sign beyond their rounding bound (the convex
+//! hull property: the polynomial then has that sign on the whole box), when
+//! the points `(αᵢⱼ, βᵢⱼ)` all lie beyond a line through the origin, or when
+//! all its `γ/w` ratios lie outside the range still searched. A box that
+//! survives is first *clipped* ([`clip`]; Nishita, Sederberg & Nakajima,
+//! "Ray tracing trimmed rational surface patches", SIGGRAPH 1990): in each
+//! parameter, the convex hull of a distance function's control points
+//! bounds the range where it can vanish, and the box shrinks to that range
+//! (de Casteljau restriction). Clipping converges quadratically to a
+//! transversal root; where it stalls (the box keeps more than
+//! [`CLIP_ENOUGH`] of its area: several roots, or a tangency) the box is
+//! halved in its wider parameter, the nearer half searched first. A box at
+//! most [`TRY_UNIQUE`] wide that Krawczyk's test proves to hold exactly one
+//! root ([`unique_root`]) is finished by Newton's method on the 2 × 2
+//! system `(e₁·(S − o), e₂·(S − o)) = 0` from its centre (then its
+//! corners), and the point is a hit if it lands in the box on the surface
+//! within the tolerance; a box below [`SMALL`] on both sides is handed to
+//! Newton's method without that proof.
+//! The patches are visited nearest first through their hierarchy
+//! ([`PatchTree`]) and the search stops at the best hit so far.
+//!
+//! No root is discarded: a box is dropped or shrunk only where a certain
+//! sign rules a hit out, so every hit lies in a box that is proven to hold
+//! one root or is small; a transversal hit is then found by Newton's method
+//! from within that box. A ray that grazes the surface (a double root) may
+//! be found or not, as for the other intersectors; no hit is reported that
+//! is not on the surface to the tolerance.
 
 use super::patch_tree::{PatchTree, Slab};
 use crate::surface::tensor_patch::{Patch, tensor_jet};
@@ -46,9 +56,10 @@ const ACCEPT: f64 = 1e-12;
 /// still count: rounding only.
 const SLACK: f64 = 1e-9;
 
-/// Boxes the depth-first search holds at once: two per level, and levels
-/// are at most `2·log₂(1/SMALL)`.
-const STACK: usize = 2 * 2 * 14 + 4;
+/// Boxes the depth-first search leaves for later at once: one per halving
+/// of the box at hand, which is halved at most `2·log₂(1/SMALL)` times
+/// before it is small.
+const STACK: usize = 2 * 14 + 4;
 
 /// A hit in a surface's own parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,13 +71,14 @@ pub(crate) struct PatchHit {
     pub(crate) v: f64,
 }
 
-/// One box of the search: its parameter ranges within the patch, its depth
-/// and where its coefficients `(α, β, γ, w)` start in the buffer.
+/// One box of the search: its parameter ranges within the patch and how
+/// many subdivisions made its coefficients `(α, β, γ, w)`.
 #[derive(Debug, Clone, Copy)]
 struct Cell {
     s: (f64, f64),
     t: (f64, f64),
-    depth: u32,
+    /// Subdivisions since the patch's own coefficients (each adds rounding).
+    steps: u32,
 }
 
 /// Control points per patch whose search runs on the stack (bicubic).
@@ -128,12 +140,12 @@ pub(crate) fn intersect(
         iterations: tol.max_iterations,
         t_floor,
     };
-    let mut on_stack = [[0.0_f64; 4]; STACK_NET * (STACK + 1)];
+    let mut on_stack = [[0.0_f64; 4]; 3 * STACK_NET];
     let mut on_heap = Vec::new();
     let buf: &mut [[f64; 4]] = if n <= STACK_NET {
-        &mut on_stack[..n * (STACK + 1)]
+        &mut on_stack[..3 * n]
     } else {
-        on_heap.resize(n * (STACK + 1), [0.0; 4]);
+        on_heap.resize(3 * n, [0.0; 4]);
         &mut on_heap
     };
     let mut best: Option<PatchHit> = None;
@@ -150,8 +162,8 @@ pub(crate) fn intersect(
 }
 
 /// The nearest hit on patch `k` of `set` with `frame.t_floor < t < t_best`,
-/// searched with the scratch space `buf` (`(STACK + 1)·n` entries for `n`
-/// control points).
+/// searched with the scratch space `buf` (`3·n` entries for `n` control
+/// points: the patch's coefficients, the box at hand's, a half box's).
 fn search_patch(
     set: PatchSet<'_>,
     k: usize,
@@ -165,94 +177,386 @@ fn search_patch(
     let (o, e1, e2, dh, dn) = (frame.o, frame.e1, frame.e2, frame.dh, frame.dn);
     let t_floor = frame.t_floor;
     let mut best = None;
-    // Coefficients (α, β, γ, w) of the patch.
+    // Coefficients (α, β, γ, w) of the patch, and the size that bounds
+    // every coefficient and its rounding.
     let mut magnitude = 0.0_f64;
     for (slot, h) in buf[..n].iter_mut().zip(&patch.net) {
         let rel = h.wp - o * h.w;
         *slot = [e1.dot(&rel), e2.dot(&rel), dh.dot(&rel), h.w];
         magnitude = magnitude.max(h.wp.abs().sum() + o.abs().sum() * h.w);
     }
+    // Rounding of the coefficients as computed, and what each subdivision
+    // (de Casteljau: convex combinations, `max(p, q)` levels of at most
+    // three roundings each) adds.
     let err = 8.0 * f64::EPSILON * magnitude;
-    let mut cells = [Cell {
+    let step = 2.0 * (p.max(q) + 1) as f64 * f64::EPSILON * magnitude;
+    // Boxes still to search (their coefficients are made again from the
+    // patch's when their turn comes); the box at hand is in `work`.
+    let mut pending = [Cell {
         s: (0.0, 1.0),
         t: (0.0, 1.0),
-        depth: 0,
+        steps: 0,
     }; STACK];
     let mut len = 1;
-    // Cell i's coefficients live at buf[(i + 1)·n ..]; slot 0 is the
-    // patch's own.
-    let (head, rest) = buf.split_at_mut(n);
-    rest[..n].copy_from_slice(head);
-    while len > 0 {
+    let (own, rest) = buf.split_at_mut(n);
+    let (work, spare) = rest.split_at_mut(n);
+    let spare = &mut spare[..n];
+    'cells: while len > 0 {
         len -= 1;
-        let cell = cells[len];
-        let coef = &rest[len * n..(len + 1) * n];
-        let bound = err * (1.0 + cell.depth as f64);
-        if excluded(coef, bound, t_floor * dn, t_best * dn) {
-            continue;
+        let mut cell = pending[len];
+        work.copy_from_slice(own);
+        if cell.s != (0.0, 1.0) {
+            restrict_lines(work, p, q, true, cell.s);
+            cell.steps += 2;
         }
-        let (ws, wt) = (cell.s.1 - cell.s.0, cell.t.1 - cell.t.0);
-        if (ws <= SMALL && wt <= SMALL) || len + 2 >= STACK {
-            if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
-                if hit.t > t_floor && hit.t < t_best {
-                    t_best = hit.t;
-                    best = Some(hit);
-                }
+        if cell.t != (0.0, 1.0) {
+            restrict_lines(work, p, q, false, cell.t);
+            cell.steps += 2;
+        }
+        loop {
+            let bound = err + step * cell.steps as f64;
+            if excluded(work, bound, t_floor * dn, t_best * dn) {
+                continue 'cells;
             }
-            continue;
-        }
-        // A box that holds exactly one root (Krawczyk's test) is
-        // finished by Newton's method if it lands inside the box.
-        if ws.max(wt) <= TRY_UNIQUE && unique_root(coef, p, q, bound) {
-            if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
-                let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
-                let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
-                let inside = s_hit >= cell.s.0 - SLACK
-                    && s_hit <= cell.s.1 + SLACK
-                    && t_hit >= cell.t.0 - SLACK
-                    && t_hit <= cell.t.1 + SLACK;
-                if inside {
+            let (ws, wt) = (cell.s.1 - cell.s.0, cell.t.1 - cell.t.0);
+            if ws <= SMALL && wt <= SMALL {
+                if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
                     if hit.t > t_floor && hit.t < t_best {
                         t_best = hit.t;
                         best = Some(hit);
                     }
-                    continue;
+                }
+                continue 'cells;
+            }
+            // A box that holds exactly one root (Krawczyk's test) is
+            // finished by Newton's method if it lands inside the box.
+            if ws.max(wt) <= TRY_UNIQUE && unique_root(work, p, q, bound) {
+                if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
+                    let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
+                    let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
+                    let inside = s_hit >= cell.s.0 - SLACK
+                        && s_hit <= cell.s.1 + SLACK
+                        && t_hit >= cell.t.0 - SLACK
+                        && t_hit <= cell.t.1 + SLACK;
+                    if inside {
+                        if hit.t > t_floor && hit.t < t_best {
+                            t_best = hit.t;
+                            best = Some(hit);
+                        }
+                        continue 'cells;
+                    }
+                }
+            }
+            // Bézier clipping: the parameter ranges outside which the
+            // hull of a distance function stays off zero hold no root.
+            // (A side already below SMALL is not clipped further.)
+            let Some((s_range, t_range)) = clip(work, (p, q), bound, (ws > SMALL, wt > SMALL))
+            else {
+                continue 'cells;
+            };
+            let kept = (s_range.1 - s_range.0) * (t_range.1 - t_range.0);
+            if kept <= CLIP_ENOUGH {
+                if s_range != (0.0, 1.0) {
+                    restrict_lines(work, p, q, true, s_range);
+                    cell.s = within(cell.s, s_range);
+                    cell.steps += 2;
+                }
+                if t_range != (0.0, 1.0) {
+                    restrict_lines(work, p, q, false, t_range);
+                    cell.t = within(cell.t, t_range);
+                    cell.steps += 2;
+                }
+                continue;
+            }
+            // Clipping stalls (several roots, or a tangency): halve in the
+            // wider parameter, go on with the nearer half and leave the
+            // other for later.
+            let split_s = ws >= wt;
+            halve(work, spare, p, q, split_s);
+            let (first, second) = if split_s {
+                let mid = 0.5 * (cell.s.0 + cell.s.1);
+                ((cell.s.0, mid), (mid, cell.s.1))
+            } else {
+                let mid = 0.5 * (cell.t.0 + cell.t.1);
+                ((cell.t.0, mid), (mid, cell.t.1))
+            };
+            let make = |r: (f64, f64)| Cell {
+                s: if split_s { r } else { cell.s },
+                t: if split_s { cell.t } else { r },
+                steps: 0,
+            };
+            // `work` now holds the first half, `spare` the second.
+            let near_first = min_distance(work) <= min_distance(spare);
+            let (near, far) = if near_first {
+                (first, second)
+            } else {
+                work.copy_from_slice(spare);
+                (second, first)
+            };
+            if len < STACK {
+                pending[len] = make(far);
+                len += 1;
+            } else {
+                // Out of room (not seen: boxes split at most
+                // 2·log₂(1/SMALL) times): the far half is finished now
+                // by Newton's method, unproven.
+                if let Some(hit) = polish(patch, k, q + 1, frame, make(far)) {
+                    if hit.t > t_floor && hit.t < t_best {
+                        t_best = hit.t;
+                        best = Some(hit);
+                    }
+                }
+            }
+            cell = Cell {
+                steps: cell.steps + 1,
+                ..make(near)
+            };
+        }
+    }
+    best
+}
+
+/// A clipped box is clipped again (rather than halved) while it keeps at
+/// most this fraction of its area.
+const CLIP_ENOUGH: f64 = 0.64;
+
+/// The sub-range `r` (of `[0, 1]`) of the interval `x`.
+fn within(x: (f64, f64), r: (f64, f64)) -> (f64, f64) {
+    let w = x.1 - x.0;
+    let hi = if r.1 >= 1.0 { x.1 } else { x.0 + w * r.1 };
+    (x.0 + w * r.0, hi)
+}
+
+/// Bézier clipping (Nishita, Sederberg & Nakajima 1990) of a box's
+/// coefficients: the ranges `(s, t)` (of the box's own `[0, 1]²`) outside
+/// which the box holds no root of `(α, β)`, or `None` if it holds none.
+///
+/// For `s`, `d = n·(α, β)` with `n` perpendicular to the net's mean
+/// direction along `t` (so that `d` varies mostly with `s`); its
+/// coefficients `dᵢⱼ`, widened by their rounding, give points
+/// `(i/p, dᵢⱼ)` whose convex hull contains the graph of `d` over each line
+/// of constant `t` (the convex hull property in `s`, for every `t` at once:
+/// the `dᵢ(t)` are convex combinations of the `dᵢⱼ`). Where the hull misses
+/// `d = 0` there is no root. The same with the roles of `s` and `t`
+/// exchanged. The ends are widened by `8ε` for the rounding of the hull's
+/// crossings.
+/// A side not `wanted` keeps `(0, 1)`.
+fn clip(
+    coef: &[[f64; 4]],
+    (p, q): (usize, usize),
+    bound: f64,
+    wanted: (bool, bool),
+) -> Option<((f64, f64), (f64, f64))> {
+    let cols = q + 1;
+    let at = |i: usize, j: usize| coef[i * cols + j];
+    // Mean direction of the net along t (last column minus first) and
+    // along s (last row minus first).
+    let (mut vt, mut vs) = ([0.0_f64; 2], [0.0_f64; 2]);
+    for i in 0..=p {
+        let (a, b) = (at(i, 0), at(i, q));
+        vt[0] += b[0] - a[0];
+        vt[1] += b[1] - a[1];
+    }
+    for j in 0..=q {
+        let (a, b) = (at(0, j), at(p, j));
+        vs[0] += b[0] - a[0];
+        vs[1] += b[1] - a[1];
+    }
+    let s_range = if p == 0 || !wanted.0 {
+        (0.0, 1.0)
+    } else {
+        clip_line(coef, p, q, true, normal_to(vt), bound)?
+    };
+    let t_range = if q == 0 || !wanted.1 {
+        (0.0, 1.0)
+    } else {
+        clip_line(coef, p, q, false, normal_to(vs), bound)?
+    };
+    Some((s_range, t_range))
+}
+
+/// A unit vector perpendicular to `v` (`(1, 0)` if `v` vanishes).
+fn normal_to(v: [f64; 2]) -> [f64; 2] {
+    let norm = v[0].hypot(v[1]);
+    if norm > 0.0 && norm.is_finite() {
+        [-v[1] / norm, v[0] / norm]
+    } else {
+        [1.0, 0.0]
+    }
+}
+
+/// The range in `s` (`along_s`) or in `t` where the hull of the points
+/// `(index/degree, n·(α, β))` meets zero (see [`clip`]); `None` if nowhere.
+fn clip_line(
+    coef: &[[f64; 4]],
+    p: usize,
+    q: usize,
+    along_s: bool,
+    n: [f64; 2],
+    bound: f64,
+) -> Option<(f64, f64)> {
+    let cols = q + 1;
+    let (degree, other) = if along_s { (p, q) } else { (q, p) };
+    // Per abscissa, the least and greatest ordinate, widened by the
+    // coefficients' rounding and the projection's.
+    let pad = (n[0].abs() + n[1].abs()) * bound;
+    let mut low = [0.0_f64; 33];
+    let mut high = [0.0_f64; 33];
+    if degree >= low.len() {
+        return Some((0.0, 1.0));
+    }
+    for i in 0..=degree {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for j in 0..=other {
+            let c = if along_s {
+                coef[i * cols + j]
+            } else {
+                coef[j * cols + i]
+            };
+            let d = n[0] * c[0] + n[1] * c[1];
+            lo = lo.min(d);
+            hi = hi.max(d);
+        }
+        let slop = pad + 2.0 * f64::EPSILON * lo.abs().max(hi.abs());
+        low[i] = lo - slop;
+        high[i] = hi + slop;
+    }
+    // The hull is bounded below by the lower hull of the lows and above by
+    // the upper hull of the highs; it meets zero where the first is ≤ 0
+    // and the second ≥ 0.
+    let below = non_positive_range(&low[..=degree])?;
+    for h in high[..=degree].iter_mut() {
+        *h = -*h;
+    }
+    let above = non_positive_range(&high[..=degree])?;
+    let (from, to) = (below.0.max(above.0), below.1.min(above.1));
+    if from > to {
+        return None;
+    }
+    let widen = 8.0 * f64::EPSILON;
+    Some(((from - widen).max(0.0), (to + widen).min(1.0)))
+}
+
+/// The range of `x ∈ [0, 1]` where the lower convex hull `L` of the points
+/// `(i/n, ys[i])` (`n = ys.len() − 1 ≥ 1`) is `≤ 0`, or `None` if `L > 0`
+/// throughout. `L` is convex, so the range is an interval, and `L` is least
+/// at a vertex.
+fn non_positive_range(ys: &[f64]) -> Option<(f64, f64)> {
+    let n = ys.len() - 1;
+    let x = |i: usize| i as f64 / n as f64;
+    // Monotone chain (Andrew 1979): the lower hull's vertices, left to right.
+    let mut hull = [0_usize; 33];
+    let mut len = 0;
+    for i in 0..=n {
+        while len >= 2 {
+            let (a, b) = (hull[len - 2], hull[len - 1]);
+            let cross = (x(b) - x(a)) * (ys[i] - ys[a]) - (ys[b] - ys[a]) * (x(i) - x(a));
+            if cross <= 0.0 {
+                len -= 1;
+            } else {
+                break;
+            }
+        }
+        hull[len] = i;
+        len += 1;
+    }
+    let hull = &hull[..len];
+    let first = hull.iter().position(|&i| ys[i] <= 0.0)?;
+    let last = hull.iter().rposition(|&i| ys[i] <= 0.0)?;
+    let crossing = |a: usize, b: usize| x(a) + (x(b) - x(a)) * (ys[a] / (ys[a] - ys[b]));
+    let from = if first == 0 {
+        0.0
+    } else {
+        crossing(hull[first - 1], hull[first])
+    };
+    let to = if last == len - 1 {
+        1.0
+    } else {
+        crossing(hull[last], hull[last + 1])
+    };
+    Some((from, to))
+}
+
+/// Replaces the box coefficients by those of the sub-box `r` (of
+/// `[0, 1]`) in `s` (`along_s`) or in `t`: each line of coefficients is
+/// split at `r.1` (keeping the left part), then at `r.0/r.1` (keeping the
+/// right part).
+fn restrict_lines(coef: &mut [[f64; 4]], p: usize, q: usize, along_s: bool, r: (f64, f64)) {
+    let cols = q + 1;
+    let (count, len, stride, step): (usize, usize, usize, usize) = if along_s {
+        (cols, p + 1, 1, cols)
+    } else {
+        (p + 1, cols, cols, 1)
+    };
+    let mut work = [[0.0_f64; 4]; 33];
+    if len > work.len() {
+        return restrict_long_lines(coef, count, len, stride, step, r);
+    }
+    for line in 0..count {
+        let at = |k: usize| line * stride + k * step;
+        let w = &mut work[..len];
+        for (k, slot) in w.iter_mut().enumerate() {
+            *slot = coef[at(k)];
+        }
+        split_keep(w, r.1, true);
+        if r.0 > 0.0 {
+            split_keep(w, r.0 / r.1, false);
+        }
+        for (k, slot) in w.iter().enumerate() {
+            coef[at(k)] = *slot;
+        }
+    }
+}
+
+/// [`restrict_lines`] for lines longer than its stack buffer.
+fn restrict_long_lines(
+    coef: &mut [[f64; 4]],
+    count: usize,
+    len: usize,
+    stride: usize,
+    step: usize,
+    r: (f64, f64),
+) {
+    let mut w = vec![[0.0_f64; 4]; len];
+    for line in 0..count {
+        for (k, slot) in w.iter_mut().enumerate() {
+            *slot = coef[line * stride + k * step];
+        }
+        split_keep(&mut w, r.1, true);
+        if r.0 > 0.0 {
+            split_keep(&mut w, r.0 / r.1, false);
+        }
+        for (k, slot) in w.iter().enumerate() {
+            coef[line * stride + k * step] = *slot;
+        }
+    }
+}
+
+/// De Casteljau at `x` on the Bernstein coefficients `w` (in place): `w`
+/// becomes the coefficients on `[0, x]` (`left`) or on `[x, 1]`.
+fn split_keep(w: &mut [[f64; 4]], x: f64, left: bool) {
+    let n = w.len();
+    if left {
+        // Level by level from the right: w[k] holds the k-th left
+        // coefficient once level k is done.
+        for level in 1..n {
+            for k in (level..n).rev() {
+                let (a, b) = (w[k - 1], w[k]);
+                for c in 0..4 {
+                    w[k][c] = a[c] + x * (b[c] - a[c]);
                 }
             }
         }
-        // Halve in the wider parameter; the nearer half is searched
-        // first (pushed last).
-        let split_s = ws >= wt;
-        let (lo, hi) = rest.split_at_mut((len + 1) * n);
-        let parent = &mut lo[len * n..];
-        let child = &mut hi[..n];
-        halve(parent, child, p, q, split_s);
-        let (first, second) = if split_s {
-            let mid = 0.5 * (cell.s.0 + cell.s.1);
-            ((cell.s.0, mid), (mid, cell.s.1))
-        } else {
-            let mid = 0.5 * (cell.t.0 + cell.t.1);
-            ((cell.t.0, mid), (mid, cell.t.1))
-        };
-        let make = |r: (f64, f64)| Cell {
-            s: if split_s { r } else { cell.s },
-            t: if split_s { cell.t } else { r },
-            depth: cell.depth + 1,
-        };
-        // parent now holds the first half, child the second.
-        let near_first = min_distance(parent) <= min_distance(child);
-        if near_first {
-            // Second half below, first half on top.
-            swap_slices(parent, child);
-            cells[len] = make(second);
-            cells[len + 1] = make(first);
-        } else {
-            cells[len] = make(first);
-            cells[len + 1] = make(second);
+    } else {
+        for level in 1..n {
+            for k in 0..n - level {
+                let (a, b) = (w[k], w[k + 1]);
+                for c in 0..4 {
+                    w[k][c] = a[c] + x * (b[c] - a[c]);
+                }
+            }
         }
-        len += 2;
     }
-    best
 }
 
 /// Boxes at most this wide (in both parameters) try the uniqueness test.
@@ -265,9 +569,14 @@ const TRY_UNIQUE: f64 = 1.0 / 8.0;
 /// second) and `Y` the inverse of its midpoint,
 /// `K = c − Y·F(c) + (I − Y·J)·([0, 1]² − c)`. If `K` lies strictly inside
 /// the box, the box holds exactly one root of `F` (Krawczyk 1969; Moore,
-/// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2). Every
-/// coefficient carries `bound` of rounding, which widens `F(c)` and `J`;
-/// `K` must clear the box's sides by `1e-6`.
+/// Kearfott & Cloud, *Introduction to Interval Analysis*, §8.2); `Y` may
+/// be any matrix, so its own rounding does not matter. The enclosures are
+/// widened for every rounding on the way: each coefficient carries `bound`
+/// (so `F(c)` gains `bound` and `J` `2·degree·bound`), the differences of
+/// `J` and the averages of `F(c)` (`p + q` levels) their own rounding, and
+/// `K`'s sums and products `4ε` times the sum of their terms' magnitudes
+/// (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.1).
+/// Beyond that, `K` must clear the box's sides by `1e-6`.
 // Index loops mirror the matrix formulas.
 #[allow(clippy::needless_range_loop)]
 fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
@@ -304,7 +613,8 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
                 *r = (0.0, 0.0);
             }
             let pad = 2.0 * degree as f64 * bound;
-            *r = (r.0 - pad, r.1 + pad);
+            let own = 2.0 * f64::EPSILON * r.0.abs().max(r.1.abs());
+            *r = (r.0 - pad - own, r.1 + pad + own);
         }
     }
     // F at the centre: de Casteljau at ½ in both parameters.
@@ -312,6 +622,11 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
         return false;
     }
     let mut centre = [0.0_f64; 2];
+    // Averages round by at most ε/2 of the largest coefficient each.
+    let largest = coef
+        .iter()
+        .fold(0.0_f64, |m, c| m.max(c[0].abs()).max(c[1].abs()));
+    let f_bound = bound + 0.5 * (p + q) as f64 * f64::EPSILON * largest;
     for (f, value) in centre.iter_mut().enumerate() {
         let mut row_values = [0.0_f64; 32];
         for (i, slot) in row_values.iter_mut().enumerate().take(p + 1) {
@@ -337,9 +652,11 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
         [-m[1][0] / det, m[0][0] / det],
     ];
     for i in 0..2 {
-        // c − Y F(c), with F(c) ± bound.
+        // c − Y F(c), with F(c) ± f_bound.
         let yf = y[i][0] * centre[0] + y[i][1] * centre[1];
-        let mut radius = (y[i][0].abs() + y[i][1].abs()) * bound;
+        let mut radius = (y[i][0].abs() + y[i][1].abs()) * f_bound;
+        // Magnitudes of the terms summed, for their rounding.
+        let mut terms = (y[i][0] * centre[0]).abs() + (y[i][1] * centre[1]).abs() + 0.5;
         // (I − Y J)(x − c), x − c ∈ [−½, ½]².
         for k in 0..2 {
             let identity = if i == k { 1.0 } else { 0.0 };
@@ -349,10 +666,13 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
                 let (a, b) = (y[i][j] * jac[j][k].0, y[i][j] * jac[j][k].1);
                 lo += a.min(b);
                 hi += a.max(b);
+                terms += a.abs().max(b.abs());
             }
             let magnitude = (identity - lo).abs().max((identity - hi).abs());
             radius += 0.5 * magnitude;
+            terms += magnitude;
         }
+        radius += 4.0 * f64::EPSILON * (terms + radius);
         let centre_i = 0.5 - yf;
         if !(centre_i - radius > 1e-6 && centre_i + radius < 1.0 - 1e-6) {
             return false;
@@ -371,13 +691,6 @@ fn half_value(w: &mut [f64]) -> f64 {
         }
     }
     w[0]
-}
-
-/// Exchanges the contents of two equal-length slices.
-fn swap_slices(a: &mut [[f64; 4]], b: &mut [[f64; 4]]) {
-    for (x, y) in a.iter_mut().zip(b.iter_mut()) {
-        std::mem::swap(x, y);
-    }
 }
 
 /// The least distance along the ray (`γ/w`) the box's coefficients allow.
