@@ -11,6 +11,7 @@
 //! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
 //! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
 //! | [`BezierSurface`] | `points` (rows along `u`) |
+//! | [`BezierPatches`] | `patches` (each a [`BezierSurface`]) |
 //! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points` |
 //! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights` |
 //! | [`Tolerance`] | `relative`, `max_iterations` |
@@ -20,7 +21,7 @@
 //! Points and vectors are sequences of their coordinates (nalgebra's own
 //! serde form). Reading goes through the public constructor
 //! ([`Bezier::new`], [`BSpline::new`], [`RationalBezier::new`],
-//! [`Nurbs::new`], [`Tolerance::new`], [`Revolution::try_new`] then
+//! [`Nurbs::new`], [`BezierPatches::new`], [`Tolerance::new`], [`Revolution::try_new`] then
 //! [`Revolution::try_with_axis`]), so a deserialized value is exactly as
 //! valid as a constructed one, and bad data (a NaN coordinate, a wrong knot
 //! count, a weight that is not positive, a tolerance out of range, a zero
@@ -28,7 +29,7 @@
 //! [`Error`](crate::Error) message. Unknown fields are errors too.
 //!
 //! Caches are not written: a revolution's intersector tables are rebuilt
-//! from the profile when it is read. A revolution whose profile or placement
+//! from the profile when it is read, a model's hierarchy from its patches. A revolution whose profile or placement
 //! is broken (see [`Revolution::contract_error`]) cannot be serialized (it
 //! could not be read back); neither can a [`Tolerance`] made unchecked with
 //! values [`Tolerance::new`] refuses be read back. [`Ray`] and [`Aabb`] have
@@ -62,8 +63,8 @@ use serde::ser::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::{
-    Aabb, BSpline, BSplineSurface, Bezier, BezierSurface, Curve, Nurbs, NurbsSurface,
-    RationalBezier, Ray, Revolution, Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Curve, Nurbs,
+    NurbsSurface, RationalBezier, Ray, Revolution, Tolerance,
 };
 
 /// A crate error as the deserializer's error, with the crate's message.
@@ -206,6 +207,29 @@ impl<'de> Deserialize<'de> for BezierSurface {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
         let data = BezierSurfaceData::deserialize(deserializer)?;
         BezierSurface::new(data.points.into_owned()).map_err(invalid)
+    }
+}
+
+/// The defining data of a [`BezierPatches`] model.
+#[derive(Serialize, Deserialize)]
+#[serde(rename = "BezierPatches", deny_unknown_fields)]
+struct BezierPatchesData<'a> {
+    patches: Cow<'a, [BezierSurface]>,
+}
+
+impl Serialize for BezierPatches {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        BezierPatchesData {
+            patches: Cow::Borrowed(self.patches()),
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for BezierPatches {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        let data = BezierPatchesData::deserialize(deserializer)?;
+        BezierPatches::new(data.patches.into_owned()).map_err(invalid)
     }
 }
 

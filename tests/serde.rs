@@ -735,3 +735,27 @@ fn tensor_surfaces_round_trip_and_bad_data_is_refused() {
         .to_string();
     assert!(err.contains("weights"), "{err}");
 }
+
+/// The teapot model round-trips through JSON with the same patches and the
+/// same hits; an empty patch list is refused with the crate's message.
+#[test]
+fn a_model_of_patches_round_trips_and_an_empty_one_is_refused() {
+    use revolve::BezierPatches;
+    let model = BezierPatches::new(common::teapot::patches()).unwrap();
+    let back = json_round_trip(&model);
+    assert_eq!(back, model);
+    let mut rng = Rng(41);
+    let b = model.bounds();
+    for _ in 0..200 {
+        let dir: Vector3<f64> = rng.direction();
+        let ray = Ray::new(rng.point_in(&b) - dir * 10.0, dir);
+        assert_eq!(
+            back.intersect(&ray, 0.0, f64::INFINITY),
+            model.intersect(&ray, 0.0, f64::INFINITY)
+        );
+    }
+    let err = serde_json::from_str::<BezierPatches>(r#"{"patches": []}"#)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains(&Error::NoPatches.to_string()), "{err}");
+}

@@ -214,6 +214,19 @@ const SPLICES: &[(&str, Option<&str>)] = &[
         Some("Group"),
     ),
     (
+        "BezierSurface { rows 2 cols 2 controls [ 1e99 0 0 ] [ 0 1e99 0 1e-4 ] [ 0 0 1e99 ] [ 1e-300 1e-300 1e-300 1e4 ] }",
+        Some("Group"),
+    ),
+    (
+        "BezierSurface { rows 2 cols 2 controls [ 0 0 0 ] [ 0 0 0 ] [ 0 0 0 ] [ 0 0 0 ] }",
+        Some("Group"),
+    ),
+    (
+        "BsplineSurface { uDegree 2 vDegree 1 uKnots 0 0 0 1e-300 1e-300 1e-300 vKnots -1e100 -1e100 1e100 1e100 rows 3 cols 2 controls [ 0 0 0 ] [ 0 1 0 ] [ 1 0 1 1e8 ] [ 1 1 1 ] [ 2 0 0 ] [ 2 1 0 ] }",
+        Some("Group"),
+    ),
+    ("BezierPatches { file data/teapot.txt }", Some("Group")),
+    (
         "PointLight { position 0 0 0 color 1e100 1e100 1e100 }",
         Some("Lights"),
     ),

@@ -3,7 +3,7 @@
 //! a bounding volume hierarchy.
 //!
 //! - [`shapes`]: sphere, plane, triangle, box, disk/ring, rectangle;
-//!   [`mesh`], [`tube`], [`revolution`]: the composite shapes.
+//!   [`mesh`], [`tube`], [`revolution`], [`surface`]: the composite shapes.
 //! - [`transform`]: rays into an object's frame by `M⁻¹` (direction not
 //!   normalized, so `t` is the world `t`), normals out by `L⁻ᵀ`.
 //! - [`object`]: a shape and its placement; [`bvh`]: the hierarchy used for
@@ -27,6 +27,11 @@ mod object;
 mod revolution;
 #[path = "geometry/shapes.rs"]
 mod shapes;
+#[path = "geometry/surface.rs"]
+mod surface;
+#[cfg(test)]
+#[path = "geometry/surface_tests.rs"]
+mod surface_tests;
 #[cfg(test)]
 #[path = "geometry/tests.rs"]
 mod tests;

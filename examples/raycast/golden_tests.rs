@@ -24,7 +24,15 @@ use crate::render::{Options, render};
 
 /// The bundled scenes in the base format (the showcase uses effects and
 /// random sampling, and is covered by the rendering tests instead).
-const BASE_SCENES: [&str; 6] = ["basic", "vase", "wine_glass", "curves", "mesh", "nurbs"];
+const BASE_SCENES: [&str; 7] = [
+    "basic",
+    "vase",
+    "wine_glass",
+    "curves",
+    "mesh",
+    "nurbs",
+    "teapot",
+];
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")

@@ -28,7 +28,7 @@
 //! Transform   { step… object }                          exactly one object
 //!   step      = Translate V | Scale x y z | UniformScale s
 //!             | XRotate deg | YRotate deg | ZRotate deg | Rotate { V deg }
-//! object      = Group | Transform | RevSurface { profile curve } | curve
+//! object      = Group | Transform | RevSurface { profile curve } | curve | surface
 //!             | Sphere { center P  radius R }
 //!             | Plane { normal V  offset D }
 //!             | Triangle { vertex0 P  vertex1 P  vertex2 P }
@@ -39,11 +39,16 @@
 //!             | Rectangle { corner P  edge1 V  edge2 V }
 //! curve       = (BezierCurve | BsplineCurve) { controls [x y z]… }
 //!             | NurbsCurve { degree p  knots k…  controls [x y z w]… }   ([x y z]: w = 1)
+//! surface     = BezierSurface { rows m  cols n  controls [x y z]… }   (m·n points, row by row)
+//!             | BsplineSurface { uDegree p  vDegree q  uKnots k…  vKnots k…
+//!                                rows m  cols n  controls [x y z]… }
+//!                                ([x y z w] anywhere: rational; [x y z]: w = 1)
+//!             | BezierPatches { file PATH }   (bicubic patches, Newell's teapot layout)
 //! Render      { [samples N] [maxDepth N] [shadows true|false]
 //!               [integrator whitted|path] [toneMap clamp|reinhard] }
 //! ```
 //!
-//! Paths (`obj_file`, `texture`) are relative to the scene file. The result
+//! Paths (`obj_file`, `texture`, `file`) are relative to the scene file. The result
 //! is flat: nested groups and transforms become one list of objects, each
 //! with its material index and composed object-to-world matrix (transforms
 //! compose in the order written, `M = T₁·T₂·…`). The submodules hold the
@@ -86,6 +91,8 @@ mod materials;
 mod obj;
 #[path = "parse/objects.rs"]
 mod objects;
+#[path = "parse/patches.rs"]
+mod patches;
 #[path = "parse/render.rs"]
 mod render;
 #[path = "parse/resources.rs"]
@@ -94,6 +101,8 @@ mod resources;
 mod shapes;
 #[path = "parse/suggest.rs"]
 mod suggest;
+#[path = "parse/surfaces.rs"]
+mod surfaces;
 #[cfg(test)]
 #[path = "parse/tests.rs"]
 mod tests;

@@ -3,16 +3,16 @@
 //!
 //! The scale is the largest absolute world coordinate of the camera, the
 //! lights and the objects' bounding points (sphere and disk extremes, box
-//! corners, mesh and tube vertices, the corners of a revolution body's
-//! bounding box, a plane's point nearest the origin), each taken through
+//! corners, mesh and tube vertices, the corners of a revolution body's or
+//! a surface's bounding box, a plane's point nearest the origin), each taken through
 //! its object's transform. A hit point carries a rounding error relative to
 //! that magnitude (and revolve's solver accepts a residual of about 1e-9
 //! times the object's scale), so secondary rays start
 //! [`EPSILON_RELATIVE`] × scale off the surface, along the normal on the side
 //! they leave by, and ignore hits closer than that.
 
-use revolve::Intersect;
 use revolve::nalgebra::{Matrix4, Point3};
+use revolve::{Aabb, Intersect};
 
 use crate::scene::{Light, RevolutionBody, Scene, Shape};
 
@@ -91,18 +91,10 @@ pub fn scene_scale(scene: &Scene) -> f64 {
                     RevolutionBody::BSpline(r) => r.bounds(),
                     RevolutionBody::Nurbs(r) => r.bounds(),
                 };
-                if !b.is_empty() {
-                    for i in 0..8 {
-                        let corner = Point3::new(
-                            if i & 1 == 0 { b.min.x } else { b.max.x },
-                            if i & 2 == 0 { b.min.y } else { b.max.y },
-                            if i & 4 == 0 { b.min.z } else { b.max.z },
-                        );
-                        include(&corner, m);
-                    }
-                }
+                corners(&b).iter().for_each(|c| include(c, m));
             }
             Shape::Tube(tube) => tube.points.iter().for_each(|p| include(p, m)),
+            Shape::Surface(body) => corners(&body.bounds()).iter().for_each(|c| include(c, m)),
         }
     }
     if scale > 0.0 && scale.is_finite() {
@@ -110,6 +102,22 @@ pub fn scene_scale(scene: &Scene) -> f64 {
     } else {
         1.0
     }
+}
+
+/// The eight corners of `b`; none when it is empty.
+fn corners(b: &Aabb) -> Vec<Point3<f64>> {
+    if b.is_empty() {
+        return Vec::new();
+    }
+    (0..8)
+        .map(|i| {
+            Point3::new(
+                if i & 1 == 0 { b.min.x } else { b.max.x },
+                if i & 2 == 0 { b.min.y } else { b.max.y },
+                if i & 4 == 0 { b.min.z } else { b.max.z },
+            )
+        })
+        .collect()
 }
 
 #[cfg(test)]

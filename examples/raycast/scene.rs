@@ -8,7 +8,10 @@
 use std::sync::Arc;
 
 use revolve::nalgebra::{Matrix4, Point3, Vector3};
-use revolve::{BSpline, Bezier, Nurbs, Revolution};
+use revolve::{
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Intersect, Nurbs,
+    NurbsSurface, Revolution,
+};
 
 /// Linear RGB, nominally in `[0, 1]` (light colours may exceed 1).
 pub type Color = Vector3<f64>;
@@ -108,6 +111,37 @@ pub enum RevolutionBody {
     Nurbs(Revolution<Nurbs<2>>),
 }
 
+/// A tensor-product surface (`BezierSurface`, `BsplineSurface`) or a model
+/// of bicubic patches (`BezierPatches`), intersected by revolve's certified
+/// patch search.
+#[derive(Debug, Clone)]
+pub enum SurfaceBody {
+    Bezier(BezierSurface),
+    BSpline(BSplineSurface),
+    /// A `BsplineSurface` or `BezierSurface` with a weighted control point.
+    Nurbs(NurbsSurface),
+    /// The patches of a `BezierPatches` file, in file order, behind
+    /// revolve's hierarchy.
+    Patches(BezierPatches),
+}
+
+impl SurfaceBody {
+    /// The body as revolve's ray target.
+    pub fn target(&self) -> &dyn Intersect {
+        match self {
+            SurfaceBody::Bezier(s) => s,
+            SurfaceBody::BSpline(s) => s,
+            SurfaceBody::Nurbs(s) => s,
+            SurfaceBody::Patches(model) => model,
+        }
+    }
+
+    /// revolve's box around everything the body can be hit at.
+    pub fn bounds(&self) -> Aabb {
+        self.target().bounds()
+    }
+}
+
 /// A curve drawn directly in a group: rendered as a thin tube along
 /// `points` (its flattening).
 #[derive(Debug, Clone, PartialEq)]
@@ -154,6 +188,7 @@ pub enum Shape {
     },
     Revolution(Arc<RevolutionBody>),
     Tube(Arc<Tube>),
+    Surface(Arc<SurfaceBody>),
 }
 
 /// One object placed in the world.

@@ -139,6 +139,7 @@ pub(crate) fn intersect(
         target: tol.relative * scale,
         iterations: tol.max_iterations,
         t_floor,
+        t_min,
     };
     let mut on_stack = [[0.0_f64; 4]; 3 * STACK_NET];
     let mut on_heap = Vec::new();
@@ -228,6 +229,29 @@ fn search_patch(
                 }
                 continue 'cells;
             }
+            // A box whose image is within the acceptance of one point (a
+            // thin box at a collapsed edge, where the Jacobian is singular
+            // and neither clipping across the edge nor Krawczyk's test can
+            // finish): its corner `(s₀, t₀)`, which is the surface point
+            // at that corner, is the hit if it is within the acceptance of
+            // the ray. If the box held a root, the corner would be within
+            // the box's extent of it, so a corner farther off the ray
+            // rules a root out.
+            if (ws <= SMALL || wt <= SMALL) && extent(work, bound) <= frame.accept {
+                let c = work[0];
+                let off = c[0].hypot(c[1]) / c[3];
+                let t_hit = c[2] / c[3] / dn;
+                if off <= frame.accept && t_hit > t_floor && t_hit < t_best {
+                    t_best = t_hit;
+                    best = Some(PatchHit {
+                        patch: k,
+                        t: t_hit,
+                        u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
+                        v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
+                    });
+                }
+                continue 'cells;
+            }
             // A box that holds exactly one root (Krawczyk's test) is
             // finished by Newton's method if it lands inside the box.
             if ws.max(wt) <= TRY_UNIQUE && unique_root(work, p, q, bound) {
@@ -249,21 +273,22 @@ fn search_patch(
             }
             // Bézier clipping: the parameter ranges outside which the
             // hull of a distance function stays off zero hold no root.
-            // (A side already below SMALL is not clipped further.)
-            let Some((s_range, t_range)) = clip(work, (p, q), bound, (ws > SMALL, wt > SMALL))
-            else {
+            let Some((s_range, t_range)) = clip(work, (p, q), bound) else {
                 continue 'cells;
             };
             let kept = (s_range.1 - s_range.0) * (t_range.1 - t_range.0);
-            if kept <= CLIP_ENOUGH {
-                if s_range != (0.0, 1.0) {
+            let (new_s, new_t) = (within(cell.s, s_range), within(cell.t, t_range));
+            // Clip again while it pays and the box still shrinks in
+            // floating point.
+            if kept <= CLIP_ENOUGH && (new_s != cell.s || new_t != cell.t) {
+                if new_s != cell.s {
                     restrict_lines(work, p, q, true, s_range);
-                    cell.s = within(cell.s, s_range);
+                    cell.s = new_s;
                     cell.steps += 2;
                 }
-                if t_range != (0.0, 1.0) {
+                if new_t != cell.t {
                     restrict_lines(work, p, q, false, t_range);
-                    cell.t = within(cell.t, t_range);
+                    cell.t = new_t;
                     cell.steps += 2;
                 }
                 continue;
@@ -320,6 +345,24 @@ fn search_patch(
 /// most this fraction of its area.
 const CLIP_ENOUGH: f64 = 0.64;
 
+/// A bound on the diameter of the box's image: the sum of the ranges of
+/// its control points' coordinates `(α, β, γ)/w` in the ray's orthonormal
+/// frame, widened by their rounding.
+fn extent(coef: &[[f64; 4]], bound: f64) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    let mut least_w = f64::INFINITY;
+    for c in coef {
+        least_w = least_w.min(c[3]);
+        for a in 0..3 {
+            let x = c[a] / c[3];
+            lo[a] = lo[a].min(x);
+            hi[a] = hi[a].max(x);
+        }
+    }
+    (0..3).map(|a| hi[a] - lo[a]).sum::<f64>() + 6.0 * bound / least_w
+}
+
 /// The sub-range `r` (of `[0, 1]`) of the interval `x`.
 fn within(x: (f64, f64), r: (f64, f64)) -> (f64, f64) {
     let w = x.1 - x.0;
@@ -340,13 +383,7 @@ fn within(x: (f64, f64), r: (f64, f64)) -> (f64, f64) {
 /// `d = 0` there is no root. The same with the roles of `s` and `t`
 /// exchanged. The ends are widened by `8ε` for the rounding of the hull's
 /// crossings.
-/// A side not `wanted` keeps `(0, 1)`.
-fn clip(
-    coef: &[[f64; 4]],
-    (p, q): (usize, usize),
-    bound: f64,
-    wanted: (bool, bool),
-) -> Option<((f64, f64), (f64, f64))> {
+fn clip(coef: &[[f64; 4]], (p, q): (usize, usize), bound: f64) -> Option<((f64, f64), (f64, f64))> {
     let cols = q + 1;
     let at = |i: usize, j: usize| coef[i * cols + j];
     // Mean direction of the net along t (last column minus first) and
@@ -362,12 +399,12 @@ fn clip(
         vs[0] += b[0] - a[0];
         vs[1] += b[1] - a[1];
     }
-    let s_range = if p == 0 || !wanted.0 {
+    let s_range = if p == 0 {
         (0.0, 1.0)
     } else {
         clip_line(coef, p, q, true, normal_to(vt), bound)?
     };
-    let t_range = if q == 0 || !wanted.1 {
+    let t_range = if q == 0 {
         (0.0, 1.0)
     } else {
         clip_line(coef, p, q, false, normal_to(vs), bound)?
@@ -786,6 +823,8 @@ struct Frame {
     iterations: u32,
     /// Hits at or below this ray parameter are the origin's own.
     t_floor: f64,
+    /// The ray parameter searched from.
+    t_min: f64,
 }
 
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
@@ -828,12 +867,21 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
             continue;
         }
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
-        let jet = tensor_jet(&patch.net, cols, s, t, 0);
-        let x = jet[0][0].wp / jet[0][0].w;
+        let jet = tensor_jet(&patch.net, cols, s, t, 1);
+        let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
+        let x = h.wp / h.w;
         let r = x - f.o;
         let along = f.dh.dot(&r);
         let off = (r - f.dh * along).norm();
-        if off <= f.accept {
+        // The point is uncertain by `accept` off the surface, so its ray
+        // parameter by `accept/(|d|·cos)` for the angle of incidence: a
+        // root that close to `t_min` is the ray's own start (a secondary
+        // ray's origin on the surface), however grazing.
+        let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
+        let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
+        let own =
+            along / f.dn - f.t_min <= f.accept / (f.dn * if cos.is_nan() { 1.0 } else { cos });
+        if off <= f.accept && !own {
             return Some(PatchHit {
                 patch: k,
                 t: along / f.dn,

@@ -1,12 +1,13 @@
 //! A model made of many Bézier patches (Newell's teapot is 32 bicubic ones),
 //! intersected through a hierarchy over the patches.
 
+use super::patch_mesh::tessellate_patches;
 use super::tensor_patch::Patch;
 use crate::bernstein::Coefficient;
 use crate::curve::{Homogeneous, elevate_bezier};
 use crate::ray::patch::{PatchSet, intersect};
 use crate::ray::patch_tree::PatchTree;
-use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Ray, Surface, Tolerance};
+use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
 use nalgebra::Unit;
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a
@@ -122,6 +123,19 @@ impl BezierPatches {
             uv: (found.u, found.v),
         };
         Some((found.patch, hit))
+    }
+
+    /// A triangle mesh within `tolerance` of every patch, each cut as in
+    /// [`BezierSurface::tessellate`]; patches that share an edge with the
+    /// same control points (either direction, as the teapot's do) get the
+    /// same vertices along it, welded, so the mesh is open only where the
+    /// model is. A vertex on a shared edge keeps the `uv` and normal of the
+    /// first patch (in order) that has it.
+    ///
+    /// # Errors
+    /// As [`BezierSurface::tessellate`].
+    pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        tessellate_patches(self.degrees, &self.patches, tolerance)
     }
 }
 

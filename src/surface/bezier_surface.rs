@@ -1,5 +1,7 @@
 //! Tensor-product Bézier surfaces.
 
+use super::Mesh;
+use super::patch_mesh::tessellate_patches;
 use super::tensor_patch::{Patch, PatchTable, flatten_points, rows_and_columns};
 use crate::Error;
 use crate::curve::{Homogeneous, check_derivatives};
@@ -117,6 +119,43 @@ impl BezierSurface {
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         let d = self.table.jet(u, v, 2);
         (d[2][0], d[1][1], d[0][2])
+    }
+
+    /// A triangle mesh within `tolerance` of the surface: the patch cut
+    /// into a grid of equal cells, two triangles each, so fine that the
+    /// second-derivative bound `(h²M_uu + 2hk·M_uv + k²M_vv)/8` (Filip,
+    /// Magedson & Markot 1986; `M` from the net's second differences) is
+    /// below the tolerance; see [`Mesh`] and the bound it reports in
+    /// [`Mesh::bound`]. Normals are the surface's (the limit at collapsed
+    /// edges, where zero-area triangles are left out), `uvs` are `(u, v)`.
+    ///
+    /// ```
+    /// use revolve::BezierSurface;
+    /// use revolve::nalgebra::Point3;
+    ///
+    /// // A saddle: S(u, v) = (u, v, u·v).
+    /// let s = BezierSurface::new(vec![
+    ///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+    ///     vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+    /// ])?;
+    /// let mesh = s.tessellate(1e-3)?;
+    /// assert!(mesh.bound <= 1e-3);
+    /// // The vertices lie on the surface; their uvs are its parameters.
+    /// for (x, &(u, v)) in mesh.positions.iter().zip(&mesh.uvs) {
+    ///     assert!((x - Point3::new(u, v, u * v)).norm() < 1e-15);
+    /// }
+    /// let mut obj = Vec::new();
+    /// mesh.write_obj(&mut obj).unwrap();
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] (not finite and positive);
+    /// [`Error::ToleranceTooSmall`] below `10⁻¹⁰` of the largest control
+    /// coordinate or where the mesh would exceed [`Mesh::MAX_VERTICES`]
+    /// (its `min` is a tolerance that fits); [`Error::AllocationFailed`].
+    pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        tessellate_patches(self.table.degrees, &self.table.patches, tolerance)
     }
 }
 

@@ -1,11 +1,12 @@
 //! Tensor-product B-spline surfaces, and the spline core they share with the
 //! rational ones (knot refinement into Bézier patches, knot insertion).
 
-use super::BezierSurface;
+use super::patch_mesh::tessellate_patches;
 use super::tensor_patch::{
     Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
     weight_scale,
 };
+use super::{BezierSurface, Mesh};
 use crate::Error;
 use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{
@@ -115,6 +116,17 @@ impl BSplineSurface {
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         let d = self.core.table.jet(u, v, 2);
         (d[2][0], d[1][1], d[0][2])
+    }
+
+    /// A triangle mesh within `tolerance` of the surface, each Bézier patch
+    /// cut as in [`BezierSurface::tessellate`]; neighbouring patches get the
+    /// same vertices along their common edge (welded), so the mesh is
+    /// watertight across the knot lines.
+    ///
+    /// # Errors
+    /// As [`BezierSurface::tessellate`].
+    pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        tessellate_patches(self.core.table.degrees, &self.core.table.patches, tolerance)
     }
 
     /// The Bézier patches, one per non-empty knot rectangle of the domain,

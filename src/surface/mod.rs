@@ -6,6 +6,7 @@ mod bezier_surface;
 mod bspline_surface;
 mod mesh;
 mod nurbs_surface;
+mod patch_mesh;
 mod profile_approximation;
 mod revolution;
 pub(crate) mod tensor_patch;

@@ -1,7 +1,8 @@
 //! Tensor-product rational B-spline (NURBS) surfaces.
 
-use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
+use super::patch_mesh::tessellate_patches;
+use super::{BSplineSurface, Mesh};
 use crate::Error;
 use nalgebra::{Point3, Vector3};
 
@@ -133,6 +134,17 @@ impl NurbsSurface {
                 }
             })
             .collect()
+    }
+
+    /// A triangle mesh within `tolerance` of the surface, as
+    /// [`BSplineSurface::tessellate`], with the second-derivative bounds of
+    /// the rational patches from their homogeneous nets by the quotient rule
+    /// (see [`Mesh`]).
+    ///
+    /// # Errors
+    /// As [`BezierSurface::tessellate`](crate::BezierSurface::tessellate).
+    pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        tessellate_patches(self.core.table.degrees, &self.core.table.patches, tolerance)
     }
 
     /// The same surface with the knot `t` inserted `times` times into `U`

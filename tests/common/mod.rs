@@ -15,13 +15,17 @@
 //! - Rational revolutions: [`conic_profiles`] (the sphere's and the torus's
 //!   NURBS profiles), [`closed_forms`] (their ray equations with exact
 //!   coefficients) and [`exact_roots`] (exact real-root isolation).
-//! - Tensor surfaces: [`tensor_shapes`] and Newell's [`teapot`].
+//! - Tensor-product surfaces: [`tensor_shapes`] (the NURBS sphere octant and
+//!   quarter cylinder with their quadratics), Newell's [`teapot`] and
+//!   [`patch_reference`] (every root of a ray on a Bézier patch, by interval
+//!   subdivision of the power form).
 
 #![allow(dead_code)]
 
 pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
+pub mod patch_reference;
 pub mod teapot;
 pub mod tensor_shapes;
 

@@ -188,7 +188,9 @@ impl Emitter {
                 }
                 Kind::Sphere { center, radius }
             }
-            Shape::Plane { .. } | Shape::Revolution(_) | Shape::Tube(_) => return None,
+            Shape::Plane { .. } | Shape::Revolution(_) | Shape::Tube(_) | Shape::Surface(_) => {
+                return None;
+            }
         };
         let area = match &kind {
             Kind::Flat { cdf, .. } => *cdf.last()?,

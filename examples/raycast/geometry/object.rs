@@ -16,9 +16,10 @@ use super::IntersectStats;
 use super::mesh::MeshShape;
 use super::revolution::RevolutionShape;
 use super::shapes::{Annulus, BoxShape, LocalHit, Parallelogram, Plane, Sphere, Triangle};
+use super::surface::SurfaceShape;
 use super::transform::Frame;
 use super::tube::TubeShape;
-use crate::scene::{Object, RevolutionBody, Shape, TriangleMesh, Tube};
+use crate::scene::{Object, RevolutionBody, Shape, SurfaceBody, TriangleMesh, Tube};
 
 /// A shape prepared for intersection in its own frame.
 #[derive(Debug, Clone)]
@@ -33,15 +34,18 @@ pub enum Prim {
     Rectangle(Parallelogram),
     Revolution(Arc<RevolutionShape>),
     Tube(Arc<TubeShape>),
+    /// A tensor-product surface or a Bézier patch model.
+    Surface(Arc<SurfaceShape>),
 }
 
-/// Prepared meshes, revolution bodies and tubes by the address of the
+/// Prepared meshes, revolution bodies, tubes and surfaces by the address of the
 /// scene's `Arc`, so that an instanced one is prepared once.
 #[derive(Default)]
 pub struct Shared {
     meshes: HashMap<*const TriangleMesh, Option<Arc<MeshShape>>>,
     revolutions: HashMap<*const RevolutionBody, Option<Arc<RevolutionShape>>>,
     tubes: HashMap<*const Tube, Option<Arc<TubeShape>>>,
+    surfaces: HashMap<*const SurfaceBody, Option<Arc<SurfaceShape>>>,
 }
 
 impl Prim {
@@ -90,6 +94,13 @@ impl Prim {
                     .or_insert_with(|| TubeShape::new(tube).map(Arc::new))
                     .clone()?,
             ),
+            Shape::Surface(body) => Prim::Surface(
+                shared
+                    .surfaces
+                    .entry(Arc::as_ptr(body))
+                    .or_insert_with(|| SurfaceShape::new(body.clone()).map(Arc::new))
+                    .clone()?,
+            ),
         })
     }
 
@@ -105,6 +116,7 @@ impl Prim {
             Prim::Rectangle(r) => r.bounds(),
             Prim::Revolution(r) => r.bounds(),
             Prim::Tube(t) => t.bounds(),
+            Prim::Surface(s) => s.bounds(),
         }
     }
 
@@ -127,6 +139,7 @@ impl Prim {
             Prim::Rectangle(r) => r.intersect(ray, t_min, t_max),
             Prim::Revolution(r) => r.intersect(ray, t_min, t_max, stats),
             Prim::Tube(t) => t.intersect(ray, t_min, t_max),
+            Prim::Surface(s) => s.intersect(ray, t_min, t_max),
         }
     }
 

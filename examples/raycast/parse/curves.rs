@@ -43,19 +43,19 @@ const TUBE_RADIUS: f64 = 1e-2;
 /// The smallest tube radius.
 const MIN_TUBE_RADIUS: f64 = 1e-3;
 
-/// One control point as written.
-struct Control {
-    point: Point3<f64>,
+/// One control point as written (of a curve or a surface).
+pub(super) struct Control {
+    pub(super) point: Point3<f64>,
     /// Where its `[` is.
-    at: Pos,
-    /// Its weight and where the weight is (a `NurbsCurve` point written with
-    /// four numbers).
-    weight: Option<(f64, Pos)>,
+    pub(super) at: Pos,
+    /// Its weight and where the weight is (a point written with four
+    /// numbers).
+    pub(super) weight: Option<(f64, Pos)>,
 }
 
 impl Control {
     /// The weight, 1 when left out.
-    fn weight(&self) -> f64 {
+    pub(super) fn weight(&self) -> f64 {
         self.weight.map_or(1.0, |(w, _)| w)
     }
 }
@@ -123,7 +123,11 @@ fn curve_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<CurveBlock> {
 
 /// The control points after `controls`, each `[x y z]`, or `[x y z w]` if
 /// `weighted`.
-fn control_points(c: &mut Cursor<'_>, what: &str, weighted: bool) -> Result<Vec<Control>> {
+pub(super) fn control_points(
+    c: &mut Cursor<'_>,
+    what: &str,
+    weighted: bool,
+) -> Result<Vec<Control>> {
     let mut points = Vec::new();
     loop {
         let at = c.here();
@@ -144,7 +148,7 @@ fn control_points(c: &mut Cursor<'_>, what: &str, weighted: bool) -> Result<Vec<
 }
 
 /// One or more numbers, each with its position (the value of `what`).
-fn numbers(c: &mut Cursor<'_>, what: &str) -> Result<Vec<(f64, Pos)>> {
+pub(super) fn numbers(c: &mut Cursor<'_>, what: &str) -> Result<Vec<(f64, Pos)>> {
     let mut values = vec![c.number_at(what)?];
     while c.peek().is_some_and(|t| matches!(t.kind, Kind::Number(_))) {
         values.push(c.number_at(what)?);

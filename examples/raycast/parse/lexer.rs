@@ -115,7 +115,7 @@ fn bracket(c: char) -> Option<Kind> {
 
 /// Whether `word` is a decimal number of the grammar above (no `inf`, `nan`,
 /// hexadecimal or digit separators, which `f64::from_str` would partly accept).
-fn is_number(word: &str) -> bool {
+pub(super) fn is_number(word: &str) -> bool {
     let b = word.as_bytes();
     let mut i = 0;
     if matches!(b.first(), Some(b'+' | b'-')) {

@@ -4,7 +4,7 @@
 //! Group     { numObjects N  ( MaterialIndex I | object )… }
 //! Transform { step… object }                      exactly one object
 //! object    = Group | Transform | primitive | RevSurface | BezierCurve | BsplineCurve
-//!           | NurbsCurve
+//!           | NurbsCurve | BezierSurface | BsplineSurface | BezierPatches
 //! ```
 //!
 //! `numObjects`, when given, counts the objects (a nested group is one) and
@@ -20,8 +20,10 @@ use super::counted::Counter;
 use super::cursor::{Cursor, Result};
 use super::curves::{CURVES, rev_surface, tube};
 use super::lexer::{Pos, Token};
+use super::patches::bezier_patches;
 use super::resources::Resources;
 use super::shapes::primitive;
+use super::surfaces::{SURFACES, surface};
 use super::transform::{STEPS, step};
 use crate::scene::{Object, Shape};
 
@@ -41,6 +43,9 @@ pub(super) const OBJECTS: &[&str] = &[
     "BezierCurve",
     "BsplineCurve",
     "NurbsCurve",
+    "BezierSurface",
+    "BsplineSurface",
+    "BezierPatches",
 ];
 
 /// The deepest nesting of `Group`s and `Transform`s accepted (the top-level
@@ -192,6 +197,8 @@ fn object(
         "Transform" => return transform(c, res, out, frame.nested(c, key)?),
         "RevSurface" => rev_surface(c)?,
         name if CURVES.contains(&name) => tube(c, key)?,
+        name if SURFACES.contains(&name) => surface(c, key)?,
+        "BezierPatches" => bezier_patches(c, res)?,
         name => match primitive(c, res, name, key.pos) {
             Some(shape) => shape?,
             None => return Err(unknown(c, key, context)),

@@ -23,10 +23,14 @@ mod limits;
 mod nurbs;
 #[path = "tests/objects.rs"]
 mod objects;
+#[path = "tests/patches.rs"]
+mod patches;
 #[path = "tests/robustness.rs"]
 mod robustness;
 #[path = "tests/settings.rs"]
 mod settings;
+#[path = "tests/surfaces.rs"]
+mod surfaces;
 #[path = "tests/transforms.rs"]
 mod transforms;
 #[path = "tests/warnings.rs"]
