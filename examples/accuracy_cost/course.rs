@@ -386,6 +386,32 @@ mod tests {
         assert!((a - want).abs() < 0.5);
     }
 
+    /// On a patch (no axis) both starting parameters are uniform: the
+    /// bilinear patch `S(u, v) = (u, v, uv)` met by vertical rays down
+    /// through `(x, y)` at height `xy`, `t = 2 − xy` from `z = 2`.
+    #[test]
+    fn converges_on_a_patch_without_an_axis() {
+        let patch = BezierSurface::new(vec![
+            vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+            vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+        ])
+        .unwrap();
+        assert!(patch.axis_frame().is_none());
+        let mut m = CourseNewton::new(patch, 15, 10, 3);
+        let mut rng = Rng(8);
+        for _ in 0..50 {
+            let (x, y) = (rng.range(0.05, 0.95), rng.range(0.05, 0.95));
+            let ray = Ray::new(Point3::new(x, y, 2.0), -Vector3::z());
+            let t = m.nearest(&ray, 0.0, f64::INFINITY).expect("a hit");
+            assert!((t - (2.0 - x * y)).abs() < 1e-9, "t = {t} at ({x}, {y})");
+        }
+        // Beside the patch's box: no iteration.
+        let before = m.steps();
+        let beside = Ray::new(Point3::new(1.5, 0.5, 2.0), -Vector3::z());
+        assert_eq!(m.nearest(&beside, 0.0, f64::INFINITY), None);
+        assert_eq!(m.steps(), before);
+    }
+
     #[test]
     fn wraps_turns_into_the_half_open_unit_interval() {
         assert_eq!(wrap_turn(0.0), 1.0);

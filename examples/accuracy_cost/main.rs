@@ -31,7 +31,7 @@
 //! The same for tensor-product Bézier patches ([`patch_study`]): a gently
 //! curved bicubic, a folded bicubic and Newell's teapot, with revolve's
 //! certified patch intersector, the Newton intersector, the course method
-//! and uniform grid meshes in parry, against a reference certified in
+//! and its tessellations in parry, against a reference certified in
 //! interval arithmetic ([`patch_reference`]).
 //!
 //! Writes `report.md` (the tables), `intersection.svg` (median error
@@ -50,7 +50,6 @@ mod curves;
 mod memory;
 mod mesh_baseline;
 mod model;
-mod patch_grid;
 mod patch_reference;
 mod patch_shapes;
 mod patch_study;

@@ -2,16 +2,16 @@
 
 use crate::memory;
 use crate::model::Method;
-use crate::patch_grid;
 use parry3d_f64::math::Vector as PVector;
 use parry3d_f64::query::{Ray as PRay, RayCast};
 use parry3d_f64::shape::TriMesh;
 use revolve::nalgebra::Point3;
-use revolve::{BezierSurface, Curve, Error, Ray, Revolution};
+use revolve::{BezierPatches, BezierSurface, Curve, Error, Ray, Revolution};
 use std::time::Instant;
 
-/// A surface of revolution tessellated with [`Revolution::tessellate`] (whose
-/// [`Mesh::bound`](revolve::Mesh::bound) certifies the deviation) and
+/// A surface of revolution tessellated with [`Revolution::tessellate`], or
+/// Bézier patches with their `tessellate` (whose
+/// [`Mesh::bound`](revolve::Mesh::bound) certifies the deviation), and
 /// ray-cast as a parry [`TriMesh`] (f64, with its BVH), two-sided: the first
 /// triangle crossing (`solid = false`).
 pub struct MeshBaseline {
@@ -20,9 +20,6 @@ pub struct MeshBaseline {
     mesh: Option<TriMesh>,
     bound: f64,
     tolerance: f64,
-    /// How the mesh was made: `"tess"` (a certified tessellation) or
-    /// `"grid"` (uniform grids of Bézier patches, [`patch_grid`]).
-    kind: &'static str,
 }
 
 /// The cost of building a [`MeshBaseline`].
@@ -58,31 +55,33 @@ impl MeshBaseline {
                 mesh.triangles,
                 mesh.bound,
                 tolerance,
-                "tess",
             ))
         })
     }
 
-    /// Bézier patches meshed by uniform grids within `tolerance`
-    /// ([`patch_grid::grid_mesh`]), as one `TriMesh`; build time and heap as
-    /// for [`build`](Self::build). `None` if the mesh would exceed
-    /// `max_triangles`.
+    /// Bézier patches tessellated to `tolerance`
+    /// ([`BezierSurface::tessellate`], or [`BezierPatches::tessellate`] for
+    /// several: welded along shared edges) as one `TriMesh`; build time and
+    /// heap as for [`build`](Self::build).
+    ///
+    /// # Errors
+    /// Those of the tessellation (and of [`BezierPatches::new`]).
     pub fn from_patches(
         patches: &[BezierSurface],
         tolerance: f64,
-        max_triangles: usize,
-    ) -> Option<(Self, MeshBuild)> {
+    ) -> Result<(Self, MeshBuild), Error> {
         Self::timed(|| {
-            let mesh = patch_grid::grid_mesh(patches, tolerance, max_triangles).ok_or(())?;
-            Ok::<_, ()>(Self::assemble(
+            let mesh = match patches {
+                [one] => one.tessellate(tolerance)?,
+                many => BezierPatches::new(many.to_vec())?.tessellate(tolerance)?,
+            };
+            Ok(Self::assemble(
                 &mesh.positions,
                 mesh.triangles,
                 mesh.bound,
                 tolerance,
-                "grid",
             ))
         })
-        .ok()
     }
 
     /// The baseline of a mesh: positions converted to parry's vectors, the
@@ -92,7 +91,6 @@ impl MeshBaseline {
         triangles: Vec<[u32; 3]>,
         bound: f64,
         tolerance: f64,
-        kind: &'static str,
     ) -> Self {
         let vertices: Vec<PVector> = positions
             .iter()
@@ -104,7 +102,6 @@ impl MeshBaseline {
             mesh,
             bound,
             tolerance,
-            kind,
         }
     }
 
@@ -141,12 +138,7 @@ impl Method for MeshBaseline {
     }
 
     fn knob(&self) -> String {
-        format!(
-            "{} {:.0e}, {} tris",
-            self.kind,
-            self.tolerance,
-            self.triangles()
-        )
+        format!("tess {:.0e}, {} tris", self.tolerance, self.triangles())
     }
 
     /// The first triangle crossing with `t_min < t < t_max`, `t` along `dir`

@@ -283,9 +283,10 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
          patch intersector has no tolerance knob: one row at its default; it ray-casts \
          the teapot as a `BezierPatches` (a hierarchy over the patches' boxes), Newton \
          and the course method as a loop over its 32 patches, each behind a test of its \
-         box. The meshes are uniform grids per patch whose \
-         second-derivative bound (`patch_grid.rs`) is within the absolute tolerance, as \
-         one parry `TriMesh`; meshes over {} triangles are not built. The course method \
+         box. The meshes are revolve's `tessellate` (a uniform \
+         grid per patch within the absolute tolerance by a second-derivative bound, \
+         welded along shared edges) as one parry `TriMesh`; meshes predicted to exceed \
+         {} triangles are not built. The course method \
          starts `u` and `v` uniformly (a patch has no axis) and never accepts hits within \
          1e-6 of a patch edge.\n",
         crate::patch_study::MAX_TRIANGLES
@@ -341,7 +342,7 @@ mod tests {
         assert!(md.contains("| NURBS sphere | revolve exact | tol 1e-14 |"));
         assert!(md.contains("| NURBS torus | parry TriMesh |"));
         assert!(md.contains("| teapot | revolve certified | default tol, BVH over 32 patches |"));
-        assert!(md.contains("| folded patch | parry TriMesh | grid 1e-2"));
+        assert!(md.contains("| folded patch | parry TriMesh | tess 1e-2"));
         let svg = std::fs::read_to_string(dir.join("intersection_patches.svg")).unwrap();
         assert!(svg.contains("teapot") && !svg.contains("NaN"));
         assert!(md.contains("## Curves"));
