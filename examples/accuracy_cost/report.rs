@@ -233,7 +233,8 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
          against hits computed in exact arithmetic (the spline profiles' own hits in \
          rational arithmetic; for the NURBS sphere and torus, the exact sphere and torus: \
          the ray–sphere quadratic and ray–torus quartic solved exactly, which the NURBS \
-         profiles match to about 1e-16 of their size); rays/s is the median of {} \
+         profiles match to about 1e-16 of their size; for the Bézier patches, an interval \
+         reference, below); rays/s is the median of {} \
          passes on one thread; memory is the heap each method holds per object.\n",
         plan.rays, plan.repeats
     );
