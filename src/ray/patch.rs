@@ -554,7 +554,9 @@ fn restrict_lines(coef: &mut [[f64; 4]], p: usize, q: usize, along_s: bool, r: (
         for (k, slot) in w.iter_mut().enumerate() {
             *slot = coef[at(k)];
         }
-        split_keep(w, r.1, true);
+        if r.1 < 1.0 {
+            split_keep(w, r.1, true);
+        }
         if r.0 > 0.0 {
             split_keep(w, r.0 / r.1, false);
         }
@@ -578,7 +580,9 @@ fn restrict_long_lines(
         for (k, slot) in w.iter_mut().enumerate() {
             *slot = coef[line * stride + k * step];
         }
-        split_keep(&mut w, r.1, true);
+        if r.1 < 1.0 {
+            split_keep(&mut w, r.1, true);
+        }
         if r.0 > 0.0 {
             split_keep(&mut w, r.0 / r.1, false);
         }
