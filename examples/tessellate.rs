@@ -1,10 +1,13 @@
-//! Tessellates a surface of revolution and writes it as OBJ.
+//! Tessellates a surface of revolution, or Newell's teapot, and writes it as
+//! OBJ.
 //!
 //! ```text
 //! cargo run --release --example tessellate -- [PROFILE] [-o OUT.obj] [--tolerance TOL]
 //! ```
 //!
-//! `PROFILE` is `wine_glass` (default), `vase`, or a text file of control
+//! `PROFILE` is `wine_glass` (default), `vase`, `teapot` (its 32 bicubic
+//! Bézier patches, `scenes/data/teapot.txt`, meshed watertight across their
+//! shared edges), or a text file of control
 //! points, one `x y` pair per line (`#` starts a comment), read as the course
 //! framework's uniform cubic B-spline (`--bezier` reads it as one Bézier
 //! curve instead). The mesh is within the tolerance of the surface; the bound
@@ -14,7 +17,7 @@
 mod common;
 
 use revolve::nalgebra::Point2;
-use revolve::{BSpline, Bezier, Mesh, Revolution};
+use revolve::{BSpline, Bezier, BezierPatches, Mesh, Revolution};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -44,7 +47,7 @@ fn parse_args() -> Result<Options, String> {
             }
             "--bezier" => o.bezier = true,
             "-h" | "--help" => {
-                return Err("usage: tessellate [wine_glass|vase|FILE] [-o OUT.obj] [--tolerance TOL] [--bezier]".into());
+                return Err("usage: tessellate [wine_glass|vase|teapot|FILE] [-o OUT.obj] [--tolerance TOL] [--bezier]".into());
             }
             flag if flag.starts_with('-') => {
                 return Err(format!("unknown flag {flag}; try --help"));
@@ -90,6 +93,8 @@ fn mesh_of(o: &Options) -> Result<Mesh, String> {
     match o.profile.as_str() {
         "wine_glass" => Revolution::new(common::wine_glass()).tessellate(o.tolerance),
         "vase" => Revolution::new(common::vase()).tessellate(o.tolerance),
+        "teapot" => BezierPatches::new(common::teapot::patches())
+            .and_then(|model| model.tessellate(o.tolerance)),
         path => {
             let points = read_points(path)?;
             if o.bezier {

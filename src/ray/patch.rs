@@ -399,16 +399,35 @@ fn clip(coef: &[[f64; 4]], (p, q): (usize, usize), bound: f64) -> Option<((f64, 
         vs[0] += b[0] - a[0];
         vs[1] += b[1] - a[1];
     }
-    let s_range = if p == 0 {
+    let mut s_range = if p == 0 {
         (0.0, 1.0)
     } else {
         clip_line(coef, p, q, true, normal_to(vt), bound)?
     };
-    let t_range = if q == 0 {
+    let mut t_range = if q == 0 {
         (0.0, 1.0)
     } else {
         clip_line(coef, p, q, false, normal_to(vs), bound)?
     };
+    let kept = (s_range.1 - s_range.0) * (t_range.1 - t_range.0);
+    if kept > CLIP_ENOUGH {
+        // Where the image's directions along s and t are nearly parallel
+        // (near a collapsed corner, or a fold) the lines across them say
+        // little; the lines along them may say more. Both ranges hold
+        // every root, so their intersection does.
+        let meet = |a: (f64, f64), b: (f64, f64)| {
+            let r = (a.0.max(b.0), a.1.min(b.1));
+            (r.0 <= r.1).then_some(r)
+        };
+        if p > 0 {
+            let along = normal_to(normal_to(vt));
+            s_range = meet(s_range, clip_line(coef, p, q, true, along, bound)?)?;
+        }
+        if q > 0 {
+            let along = normal_to(normal_to(vs));
+            t_range = meet(t_range, clip_line(coef, p, q, false, along, bound)?)?;
+        }
+    }
     Some((s_range, t_range))
 }
 
@@ -535,7 +554,9 @@ fn restrict_lines(coef: &mut [[f64; 4]], p: usize, q: usize, along_s: bool, r: (
         for (k, slot) in w.iter_mut().enumerate() {
             *slot = coef[at(k)];
         }
-        split_keep(w, r.1, true);
+        if r.1 < 1.0 {
+            split_keep(w, r.1, true);
+        }
         if r.0 > 0.0 {
             split_keep(w, r.0 / r.1, false);
         }
@@ -559,7 +580,9 @@ fn restrict_long_lines(
         for (k, slot) in w.iter_mut().enumerate() {
             *slot = coef[line * stride + k * step];
         }
-        split_keep(&mut w, r.1, true);
+        if r.1 < 1.0 {
+            split_keep(&mut w, r.1, true);
+        }
         if r.0 > 0.0 {
             split_keep(&mut w, r.0 / r.1, false);
         }
