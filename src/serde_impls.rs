@@ -10,13 +10,16 @@
 //! | [`RationalBezier<D>`] | `points`, `weights` |
 //! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
 //! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
-//! | [`BezierSurface`] | `points` (rows along `u`) |
-//! | [`BezierPatches`] | `patches` (each a [`BezierSurface`]) |
-//! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points` |
-//! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights` |
+//! | [`BezierSurface`] | `points` (rows along `u`), `tolerance`¹ |
+//! | [`BezierPatches`] | `patches` (each a [`BezierSurface`]), `tolerance`¹ |
+//! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points`, `tolerance`¹ |
+//! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights`, `tolerance`¹ |
 //! | [`Tolerance`] | `relative`, `max_iterations` |
 //! | [`Ray`] | `origin`, `dir` |
 //! | [`Aabb`] | `min`, `max` |
+//!
+//! ¹ Written only when it is not the default; read as the default when
+//! absent.
 //!
 //! Points and vectors are sequences of their coordinates (nalgebra's own
 //! serde form). Reading goes through the public constructor
@@ -192,12 +195,20 @@ impl<'de, const D: usize> Deserialize<'de> for Nurbs<D> {
 #[serde(rename = "BezierSurface", deny_unknown_fields)]
 struct BezierSurfaceData<'a> {
     points: Cow<'a, [Vec<Point3<f64>>]>,
+    #[serde(default, skip_serializing_if = "is_default")]
+    tolerance: Tolerance,
+}
+
+/// Whether a tolerance is the default one (then it is not written).
+fn is_default(t: &Tolerance) -> bool {
+    *t == Tolerance::default()
 }
 
 impl Serialize for BezierSurface {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         BezierSurfaceData {
             points: Cow::Borrowed(self.points()),
+            tolerance: *self.tolerance(),
         }
         .serialize(serializer)
     }
@@ -206,7 +217,9 @@ impl Serialize for BezierSurface {
 impl<'de> Deserialize<'de> for BezierSurface {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
         let data = BezierSurfaceData::deserialize(deserializer)?;
-        BezierSurface::new(data.points.into_owned()).map_err(invalid)
+        BezierSurface::new(data.points.into_owned())
+            .map(|s| s.with_tolerance(data.tolerance))
+            .map_err(invalid)
     }
 }
 
@@ -215,12 +228,15 @@ impl<'de> Deserialize<'de> for BezierSurface {
 #[serde(rename = "BezierPatches", deny_unknown_fields)]
 struct BezierPatchesData<'a> {
     patches: Cow<'a, [BezierSurface]>,
+    #[serde(default, skip_serializing_if = "is_default")]
+    tolerance: Tolerance,
 }
 
 impl Serialize for BezierPatches {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         BezierPatchesData {
             patches: Cow::Borrowed(self.patches()),
+            tolerance: *self.tolerance(),
         }
         .serialize(serializer)
     }
@@ -229,7 +245,9 @@ impl Serialize for BezierPatches {
 impl<'de> Deserialize<'de> for BezierPatches {
     fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
         let data = BezierPatchesData::deserialize(deserializer)?;
-        BezierPatches::new(data.patches.into_owned()).map_err(invalid)
+        BezierPatches::new(data.patches.into_owned())
+            .map(|m| m.with_tolerance(data.tolerance))
+            .map_err(invalid)
     }
 }
 
@@ -243,6 +261,8 @@ struct TensorSplineData<'a> {
     points: Cow<'a, [Vec<Point3<f64>>]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     weights: Option<Cow<'a, [Vec<f64>]>>,
+    #[serde(default, skip_serializing_if = "is_default")]
+    tolerance: Tolerance,
 }
 
 impl Serialize for BSplineSurface {
@@ -253,6 +273,7 @@ impl Serialize for BSplineSurface {
             knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
             points: Cow::Borrowed(self.points()),
             weights: None,
+            tolerance: *self.tolerance(),
         }
         .serialize(serializer)
     }
@@ -267,7 +288,9 @@ impl<'de> Deserialize<'de> for BSplineSurface {
             ));
         }
         let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
-        BSplineSurface::new(data.degrees, knots, data.points.into_owned()).map_err(invalid)
+        BSplineSurface::new(data.degrees, knots, data.points.into_owned())
+            .map(|s| s.with_tolerance(data.tolerance))
+            .map_err(invalid)
     }
 }
 
@@ -279,6 +302,7 @@ impl Serialize for NurbsSurface {
             knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
             points: Cow::Borrowed(self.points()),
             weights: Some(Cow::Borrowed(self.weights())),
+            tolerance: *self.tolerance(),
         }
         .serialize(serializer)
     }
@@ -297,6 +321,7 @@ impl<'de> Deserialize<'de> for NurbsSurface {
             data.points.into_owned(),
             weights.into_owned(),
         )
+        .map(|s| s.with_tolerance(data.tolerance))
         .map_err(invalid)
     }
 }

@@ -334,3 +334,53 @@ fn high_degree_planar_patch_is_its_affine_map() {
         assert!((hit.uv.0 - u).abs() <= 1e-8 && (hit.uv.1 - v).abs() <= 1e-8);
     }
 }
+
+/// A looser tolerance keeps every hit (the search is certified at any
+/// tolerance) and places it within that tolerance of the full-precision
+/// hit; it is clamped into the valid range and kept by the surface.
+#[test]
+fn a_looser_tolerance_keeps_every_hit_within_it() {
+    use revolve::Tolerance;
+    let exact = common::tensor_shapes::folded_bicubic();
+    let size = exact.bounds().scale();
+    for relative in [1e-10, 1e-6, 1e-4] {
+        let loose = exact.clone().with_tolerance(Tolerance::relative(relative));
+        assert_eq!(loose.tolerance().relative, relative);
+        let mut rng = Rng(5);
+        let (mut both, mut compared) = (0, 0);
+        for _ in 0..3000 {
+            let b = exact.bounds();
+            let dir: Vector3<f64> = rng.direction();
+            let ray = Ray::new(rng.point_in(&b) - dir * 4.0, dir);
+            let (a, l) = (
+                exact.intersect(&ray, 0.0, f64::INFINITY),
+                loose.intersect(&ray, 0.0, f64::INFINITY),
+            );
+            compared += 1;
+            match (a, l) {
+                (Some(a), Some(l)) => {
+                    both += 1;
+                    // Where two roots lie within the tolerance along the
+                    // ray either may be the nearest; both are on the ray.
+                    assert!((l.point - ray.at(l.t)).norm() <= 2.0 * relative * size);
+                    assert!(
+                        (l.t - a.t).abs() * ray.dir.norm() <= 1e3 * relative * size,
+                        "{relative}: {} vs {}",
+                        l.t,
+                        a.t
+                    );
+                }
+                (Some(a), None) => panic!("{relative}: the loose search lost {a:?} on {ray:?}"),
+                // A ray passing within the tolerance counts as touching.
+                (None, Some(l)) => {
+                    let on = exact.eval(l.uv.0, l.uv.1);
+                    assert!((on - ray.at(l.t)).norm() <= 2.0 * relative * size);
+                }
+                (None, None) => {}
+            }
+        }
+        assert!(both > 1000, "{both} of {compared}");
+    }
+    let clamped = exact.with_tolerance(Tolerance::relative(1.0));
+    assert_eq!(clamped.tolerance().relative, 1e-3);
+}

@@ -754,6 +754,18 @@ fn a_model_of_patches_round_trips_and_an_empty_one_is_refused() {
             model.intersect(&ray, 0.0, f64::INFINITY)
         );
     }
+    // The tolerance is written only when it is not the default.
+    assert!(!serde_json::to_string(&model).unwrap().contains("tolerance"));
+    let loose = model.with_tolerance(Tolerance::relative(1e-6));
+    let text = serde_json::to_string(&loose).unwrap();
+    assert!(text.contains("tolerance"), "{text}");
+    let back: BezierPatches = serde_json::from_str(&text).unwrap();
+    assert_eq!(back.tolerance().relative, 1e-6);
+    assert_eq!(back, loose);
+    let surface = loose.patches()[0]
+        .clone()
+        .with_tolerance(Tolerance::relative(1e-8));
+    assert_eq!(json_round_trip(&surface), surface);
     let err = serde_json::from_str::<BezierPatches>(r#"{"patches": []}"#)
         .unwrap_err()
         .to_string();

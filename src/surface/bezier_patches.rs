@@ -54,6 +54,7 @@ pub struct BezierPatches {
     /// weights.
     patches: Vec<Patch>,
     tree: PatchTree,
+    tolerance: Tolerance,
 }
 
 impl BezierPatches {
@@ -83,7 +84,20 @@ impl BezierPatches {
             degrees,
             patches: nets,
             tree,
+            tolerance: Tolerance::default(),
         })
+    }
+
+    /// The same model with the given intersection accuracy (see
+    /// [`BezierSurface::with_tolerance`]).
+    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.tolerance = tolerance.clamped();
+        self
+    }
+
+    /// The intersection accuracy.
+    pub fn tolerance(&self) -> &Tolerance {
+        &self.tolerance
     }
 
     /// The patches, in the order given.
@@ -111,7 +125,7 @@ impl BezierPatches {
             patches: &self.patches,
             tree: &self.tree,
         };
-        let found = intersect(set, ray, t_min, t_max, &Tolerance::default())?;
+        let found = intersect(set, ray, t_min, t_max, &self.tolerance)?;
         let surface = &self.surfaces[found.patch];
         let normal = surface
             .normal(found.u, found.v)

@@ -18,8 +18,8 @@ use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 
 /// `Surface`, `BoundedSurface` and `Intersect` for a tensor-product surface
-/// type whose [`PatchTable`] is at `self.$($path).+`: each method is the
-/// table's.
+/// type whose [`PatchTable`] is at `self.$($path).+` (each method is the
+/// table's), and its `with_tolerance` and `tolerance`.
 macro_rules! tensor_surface_traits {
     ($ty:ty, $($path:ident).+) => {
         impl $crate::Surface for $ty {
@@ -46,12 +46,13 @@ macro_rules! tensor_surface_traits {
             }
         }
 
-        /// Ray intersection by subdivision of the ray's two plane distances
-        /// on each Bézier patch: a box is dropped only where a certain sign
-        /// rules a hit out; a box that Krawczyk's test proves to hold one
-        /// root, or one below `2⁻¹⁴` a side, is finished by Newton's method,
-        /// and only points on the surface to the default
-        /// [`Tolerance`](crate::Tolerance) are hits. `Hit::uv` is `(u, v)` in
+        /// Ray intersection by Bézier clipping and subdivision of the ray's
+        /// two plane distances on each Bézier patch (the patches visited
+        /// through a hierarchy over their boxes): a box is dropped or shrunk
+        /// only where a certain sign rules a hit out; a box that Krawczyk's
+        /// test proves to hold one root, or one below `2⁻¹⁴` a side, is
+        /// finished by Newton's method, and only points on the surface to
+        /// the surface's tolerance (`with_tolerance`) are hits. `Hit::uv` is `(u, v)` in
         /// the surface's parameters; the normal follows `∂S/∂u × ∂S/∂v` (the
         /// limit at collapsed edges).
         impl $crate::Intersect for $ty {
@@ -61,6 +62,25 @@ macro_rules! tensor_surface_traits {
 
             fn bounds(&self) -> $crate::Aabb {
                 self.$($path).+.tree.all
+            }
+        }
+
+        impl $ty {
+            /// The same surface with the given intersection accuracy (the
+            /// default is full double precision),
+            /// [clamped](crate::Tolerance::clamped) into the valid range:
+            /// Newton's method stops once a hit is within
+            /// `tolerance.relative` of the surface's size off the ray, and
+            /// no hit farther off than that (or `10⁻¹²` of the size) is
+            /// reported. The search itself is certified at every tolerance.
+            pub fn with_tolerance(mut self, tolerance: $crate::Tolerance) -> Self {
+                self.$($path).+.tolerance = tolerance.clamped();
+                self
+            }
+
+            /// The intersection accuracy.
+            pub fn tolerance(&self) -> &$crate::Tolerance {
+                &self.$($path).+.tolerance
             }
         }
     };
@@ -99,6 +119,8 @@ pub(crate) struct PatchTable {
     /// The hierarchy over the patches' boxes for ray intersection,
     /// computed once.
     pub(crate) tree: PatchTree,
+    /// The intersection accuracy.
+    pub(crate) tolerance: Tolerance,
 }
 
 /// Value and derivatives up to order 2 (`d[a][b] = ∂ᵃ⁺ᵇ/∂uᵃ∂vᵇ`, `a + b ≤ 2`).
@@ -238,6 +260,7 @@ impl PatchTable {
             patches,
             extent: b.extent().amax(),
             tree,
+            tolerance: Tolerance::default(),
         }
     }
 
@@ -285,7 +308,7 @@ impl PatchTable {
     /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; facing the ray where
     /// no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let found = intersect(self.search_set(), ray, t_min, t_max, &Tolerance::default())?;
+        let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
         let point = self.eval(found.u, found.v);
         let normal = self
             .normal(found.u, found.v)
