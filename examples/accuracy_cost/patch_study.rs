@@ -4,7 +4,7 @@
 //!
 //! Methods, on the same rays as for the revolutions:
 //! - revolve's certified patch intersector (`Intersect` on
-//!   [`BezierSurface`]) at its one tolerance (it has no tolerance knob);
+//!   [`BezierSurface`]) at the plan's exact tolerances (`with_tolerance`);
 //! - [`NewtonIntersector`] at the plan's depths and tolerances;
 //! - the course method ([`CourseNewton`]) with `u₀`, `v₀` uniform;
 //! - the patches tessellated by revolve (`tessellate`, certified deviation,
@@ -161,18 +161,24 @@ pub fn run_patch_shape(
         rows.push(row);
     };
     let patches = &shape.patches;
-    if let [patch] = patches.as_slice() {
-        let (mut m, s, b) = built(|| Certified {
-            model: patch.clone(),
-            knob: "default tol".to_string(),
-        });
-        record(&mut m, s, b);
-    } else {
-        let (mut m, s, b) = built(|| Certified {
-            model: BezierPatches::new(patches.clone()).expect("a non-empty model"),
-            knob: format!("default tol, BVH over {} patches", patches.len()),
-        });
-        record(&mut m, s, b);
+    for &tolerance in &plan.exact_tolerances {
+        let tol = Tolerance::relative(tolerance);
+        let knob = format!("tol {tolerance:.0e}");
+        if let [patch] = patches.as_slice() {
+            let (mut m, s, b) = built(|| Certified {
+                model: patch.clone().with_tolerance(tol),
+                knob: knob.clone(),
+            });
+            record(&mut m, s, b);
+        } else {
+            let (mut m, s, b) = built(|| Certified {
+                model: BezierPatches::new(patches.clone())
+                    .expect("a non-empty model")
+                    .with_tolerance(tol),
+                knob: format!("{knob}, BVH over {} patches", patches.len()),
+            });
+            record(&mut m, s, b);
+        }
     }
     for &depth in &plan.newton_depths {
         for &tolerance in &plan.newton_tolerances {
@@ -338,13 +344,15 @@ mod tests {
         let cases = reference_cases(&shape.reference(), &random_rays(&b, 60, 9), b.scale());
         let rows = run_patch_shape(&shape, &cases, &plan, &mut |_| {});
         assert_eq!(rows.len(), plan.patch_rows());
-        let certified = &rows[0];
-        assert_eq!(certified.series, "revolve certified");
-        assert!(certified.knob.contains("BVH over 32 patches"));
-        assert!(rows[1].knob.contains("loop over 32 boxes"));
-        assert_eq!(certified.errors.miss_rate, 0.0);
-        assert_eq!(certified.errors.false_hit_rate, 0.0);
-        assert_eq!(certified.errors.far_hit_rate, 0.0);
+        let newton = plan.exact_tolerances.len();
+        assert!(rows[newton].knob.contains("loop over 32 boxes"));
+        for certified in &rows[..newton] {
+            assert_eq!(certified.series, "revolve certified");
+            assert!(certified.knob.contains("BVH over 32 patches"));
+            assert_eq!(certified.errors.miss_rate, 0.0);
+            assert_eq!(certified.errors.false_hit_rate, 0.0);
+            assert_eq!(certified.errors.far_hit_rate, 0.0);
+        }
         let mesh = rows.last().unwrap();
         assert_eq!(mesh.series, "parry TriMesh");
         assert!(mesh.knob.starts_with("tess 1e-2"));

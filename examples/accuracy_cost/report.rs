@@ -344,7 +344,7 @@ mod tests {
         assert!(md.contains("| wine glass | parry TriMesh |"));
         assert!(md.contains("| NURBS sphere | revolve exact | tol 1e-14 |"));
         assert!(md.contains("| NURBS torus | parry TriMesh |"));
-        assert!(md.contains("| teapot | revolve certified | default tol, BVH over 32 patches |"));
+        assert!(md.contains("| teapot | revolve certified | tol 1e-14, BVH over 32 patches |"));
         assert!(md.contains("| folded patch | parry TriMesh | tess 1e-2"));
         let svg = std::fs::read_to_string(dir.join("intersection_patches.svg")).unwrap();
         assert!(svg.contains("teapot") && !svg.contains("NaN"));

@@ -81,7 +81,8 @@ impl Plan {
     /// (default) tolerance, then as for a revolution without the tolerance
     /// sweeps ([`crate::patch_study`]).
     pub fn patch_rows(&self) -> usize {
-        1 + self.newton_depths.len() * self.newton_tolerances.len()
+        self.exact_tolerances.len()
+            + self.newton_depths.len() * self.newton_tolerances.len()
             + self.course.len()
             + self.mesh_tolerances.len()
     }

@@ -136,7 +136,8 @@ pub(crate) fn intersect(
         e2,
         dh,
         accept,
-        target: tol.relative * scale,
+        // Every hit is polished to full precision, whatever the tolerance.
+        target: Tolerance::default().relative * scale,
         iterations: tol.max_iterations,
         t_floor,
         t_min,
@@ -875,7 +876,7 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
             let (j00, j01, j10, j11) = (f.e1.dot(&xs), f.e1.dot(&xt), f.e2.dot(&xs), f.e2.dot(&xt));
             let det = j00 * j11 - j01 * j10;
             let residual = (fa * fa + fb * fb).sqrt();
-            if residual <= f.target.max(f.accept * 1e-3) || det == 0.0 || !det.is_finite() {
+            if residual <= f.target || det == 0.0 || !det.is_finite() {
                 break;
             }
             let ds = (fa * j11 - fb * j01) / det;

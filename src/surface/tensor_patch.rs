@@ -68,11 +68,13 @@ macro_rules! tensor_surface_traits {
         impl $ty {
             /// The same surface with the given intersection accuracy (the
             /// default is full double precision),
-            /// [clamped](crate::Tolerance::clamped) into the valid range:
-            /// Newton's method stops once a hit is within
-            /// `tolerance.relative` of the surface's size off the ray, and
-            /// no hit farther off than that (or `10⁻¹²` of the size) is
-            /// reported. The search itself is certified at every tolerance.
+            /// [clamped](crate::Tolerance::clamped) into the valid range: a
+            /// point of the surface within `tolerance.relative` of its size
+            /// (at least `10⁻¹²`) off the ray counts as a hit (so a ray
+            /// passing that close to a silhouette touches it), and boxes
+            /// whose image is that small are decided at once. The search is
+            /// certified and every hit polished to full precision at every
+            /// tolerance.
             pub fn with_tolerance(mut self, tolerance: $crate::Tolerance) -> Self {
                 self.$($path).+.tolerance = tolerance.clamped();
                 self
