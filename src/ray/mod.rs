@@ -108,6 +108,36 @@ pub trait Intersect {
 
     /// A box containing everything the object can be hit at.
     fn bounds(&self) -> Aabb;
+
+    /// Many rays at once: `hits[i]` receives exactly what
+    /// `intersect(&rays[i], ranges[i].0, ranges[i].1)` returns
+    /// (`ranges[i] = (t_min, t_max)`). Slices of unequal length: only their
+    /// common prefix is processed, the rest of `hits` is left as it was.
+    ///
+    /// The default loops over [`intersect`](Self::intersect); a type may
+    /// override it with a faster path that gives the same hits.
+    ///
+    /// ```
+    /// use revolve::{Bezier, Intersect, Ray, Revolution};
+    /// use revolve::nalgebra::{Point2, Point3, Vector3};
+    ///
+    /// let cylinder = Revolution::new(Bezier::new(vec![
+    ///     Point2::new(1.0, 0.0), Point2::new(1.0, 2.0)])?);
+    /// let rays: Vec<Ray> = (0..4)
+    ///     .map(|i| Ray::new(Point3::new(-3.0, 0.5 * i as f64, 0.0), Vector3::x()))
+    ///     .collect();
+    /// let mut hits = vec![None; rays.len()];
+    /// cylinder.intersect_batch(&rays, &[(0.0, f64::INFINITY); 4], &mut hits);
+    /// for (ray, hit) in rays.iter().zip(&hits) {
+    ///     assert_eq!(*hit, cylinder.intersect(ray, 0.0, f64::INFINITY));
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    fn intersect_batch(&self, rays: &[Ray], ranges: &[(f64, f64)], hits: &mut [Option<Hit>]) {
+        for ((ray, &(t_min, t_max)), hit) in rays.iter().zip(ranges).zip(hits.iter_mut()) {
+            *hit = self.intersect(ray, t_min, t_max);
+        }
+    }
 }
 
 /// How accurately a solver works: an explicit setting, no hidden epsilon.

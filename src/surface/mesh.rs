@@ -1,5 +1,6 @@
 //! Triangle meshes of surfaces of revolution with a deviation bound, and OBJ
-//! export.
+//! export (the [`Mesh`] type; tensor-product surfaces are meshed in
+//! `patch_mesh.rs`).
 //!
 //! The profile is flattened adaptively ([`Flattening`](crate::Flattening)) so
 //! that each profile piece lies within `ε_p` of its chord, and the angle is cut
@@ -54,7 +55,8 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// The most vertices [`Revolution::tessellate`] makes (`2²⁴`; with
+    /// The most vertices [`Revolution::tessellate`] and the tensor surfaces'
+    /// `tessellate` make (`2²⁴`; with
     /// normals, parameters and about two triangles per vertex, about 1.4 GB);
     /// tolerances that would need more are refused.
     pub const MAX_VERTICES: usize = 1 << 24;
