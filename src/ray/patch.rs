@@ -865,8 +865,11 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
     ];
     for (s0, t0) in starts {
         let (mut s, mut t) = (s0, t0);
+        // The jet at the last point evaluated, if Newton stopped there.
+        let mut last = None;
         for _ in 0..f.iterations.max(8) {
-            let jet = tensor_jet(&patch.net, cols, s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5), 1);
+            let (sc, tc) = (s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5));
+            let jet = tensor_jet(&patch.net, cols, sc, tc, 1);
             let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
             let x = h.wp / h.w;
             let xs = (hs.wp - x * hs.w) / h.w;
@@ -877,6 +880,7 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
             let det = j00 * j11 - j01 * j10;
             let residual = (fa * fa + fb * fb).sqrt();
             if residual <= f.target || det == 0.0 || !det.is_finite() {
+                last = Some((sc, tc, jet));
                 break;
             }
             let ds = (fa * j11 - fb * j01) / det;
@@ -891,7 +895,10 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
             continue;
         }
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
-        let jet = tensor_jet(&patch.net, cols, s, t, 1);
+        let jet = match last {
+            Some((sc, tc, jet)) if (sc, tc) == (s, t) => jet,
+            _ => tensor_jet(&patch.net, cols, s, t, 1),
+        };
         let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
         let x = h.wp / h.w;
         let r = x - f.o;
