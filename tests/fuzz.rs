@@ -26,9 +26,9 @@ use revolve::curve::MAX_SEGMENTS;
 use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2, Vector3};
 use revolve::surface::BoundedSurface;
 use revolve::{
-    Aabb, BSpline, Bezier, BezierSpan, Curve, Error, Hit, Intersect, MAX_COORDINATE, Mesh,
-    NewtonIntersector, Nurbs, RationalBezier, RationalBezierSpan, Ray, Revolution, Surface,
-    Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface, Curve, Error,
+    Hit, Intersect, MAX_COORDINATE, Mesh, NewtonIntersector, Nurbs, NurbsSurface, RationalBezier,
+    RationalBezierSpan, Ray, Revolution, Surface, Tolerance,
 };
 use std::any::Any;
 use std::cell::RefCell;
@@ -1485,4 +1485,194 @@ fn fuzz_testing_support() {
             testing::check_surface_partials(&s, n)
         });
     });
+}
+
+// ---------------------------------------------------------------------------
+// Tensor-product surfaces
+// ---------------------------------------------------------------------------
+
+#[test]
+fn fuzz_tensor_surfaces() {
+    fuzz("tensor surfaces", 30_000, |f| {
+        let (rows, cols) = (1 + f.below(5), 1 + f.below(5));
+        let scale = f.scale();
+        let mut grid: Vec<Vec<Point3<f64>>> = (0..rows)
+            .map(|_| {
+                let mut row: Vec<Point3<f64>> = (0..cols)
+                    .map(|_| {
+                        let c = [
+                            f.coordinate(scale),
+                            f.coordinate(scale),
+                            f.coordinate(scale),
+                        ];
+                        Point3::new(c[0], c[1], c[2])
+                    })
+                    .collect();
+                if f.chance(6) && !row.is_empty() {
+                    // A collapsed row (a pole, as on the teapot's lid).
+                    let first = row[0];
+                    row.iter_mut().for_each(|p| *p = first);
+                }
+                row
+            })
+            .collect();
+        if f.chance(40) {
+            grid[0].pop(); // ragged
+        }
+        if f.chance(60) {
+            grid.clear(); // empty
+        }
+        match f.below(3) {
+            0 => {
+                if let Some(Ok(s)) = f.call("BezierSurface::new", || BezierSurface::new(grid)) {
+                    tensor_case(f, &s, "BezierSurface");
+                    if let Some(Ok(m)) = f.call("BezierPatches::new", || {
+                        BezierPatches::new(vec![s.clone(), s])
+                    }) {
+                        patches_case(f, &m);
+                    }
+                }
+            }
+            1 => {
+                let degrees = (f.below(rows + 1), f.below(cols + 1));
+                let knots = (f.knots(rows, degrees.0), f.knots(cols, degrees.1));
+                if let Some(Ok(s)) = f.call("BSplineSurface::new", || {
+                    BSplineSurface::new(degrees, knots, grid)
+                }) {
+                    tensor_case(f, &s, "BSplineSurface");
+                }
+            }
+            _ => {
+                let degrees = (f.below(rows + 1), f.below(cols + 1));
+                let knots = (f.knots(rows, degrees.0), f.knots(cols, degrees.1));
+                let weights: Vec<Vec<f64>> = (0..rows).map(|_| f.weights(cols)).collect();
+                if let Some(Ok(s)) = f.call("NurbsSurface::new", || {
+                    NurbsSurface::new(degrees, knots, grid, weights)
+                }) {
+                    tensor_case(f, &s, "NurbsSurface");
+                }
+            }
+        }
+    });
+}
+
+/// A parameter: mostly inside the domain, sometimes extreme.
+fn parameter(f: &mut Fuzz, (lo, hi): (f64, f64)) -> f64 {
+    if f.chance(8) {
+        f.number()
+    } else {
+        lo + (hi - lo) * f.rng.unit()
+    }
+}
+
+/// Evaluation, bounds, intersection and meshing of a constructed tensor
+/// surface: no panic, no NaN, every hit on its ray and on the surface.
+fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &'static str) {
+    let [du, dv] = s.domain();
+    for _ in 0..4 {
+        let (u, v) = (parameter(f, du), parameter(f, dv));
+        if let Some(p) = f.call("Surface::eval", || s.eval(u, v)) {
+            f.check(finite_point(&p), "Surface::eval", || {
+                format!("{kind} ({u}, {v}): {p:?}")
+            });
+        }
+        if let Some((a, b)) = f.call("Surface::partials", || s.partials(u, v)) {
+            f.check(finite(&a) && finite(&b), "Surface::partials", || {
+                format!("{kind} ({u}, {v}): {a:?} {b:?}")
+            });
+        }
+        if let Some(Some(n)) = f.call("Surface::normal", || s.normal(u, v)) {
+            f.check(unit_vector(&n), "Surface::normal", || {
+                format!("{kind}: {n:?}")
+            });
+        }
+    }
+    let Some(bounds) = f.call("Intersect::bounds", || s.bounds()) else {
+        return;
+    };
+    f.check(sane_box(&bounds), "Intersect::bounds", || {
+        format!("{kind}: {bounds:?}")
+    });
+    for _ in 0..6 {
+        let ray = ray_at(f, &bounds);
+        let (t_min, t_max) = if f.chance(6) {
+            (f.number(), f.number())
+        } else {
+            (0.0, f64::INFINITY)
+        };
+        if let Some(Some(hit)) = f.call("Intersect::intersect", || s.intersect(&ray, t_min, t_max))
+        {
+            f.hits += 1;
+            f.check(sane_hit(&hit, t_min, t_max), "Intersect::intersect", || {
+                format!("{kind}: {ray:?} ({t_min}, {t_max}): {hit:?}")
+            });
+            let on = s.eval(hit.uv.0, hit.uv.1);
+            let size = bounds.extent().amax().max(ray.origin.coords.amax());
+            f.check(
+                (on - hit.point).norm() <= 1e-6 * size,
+                "Intersect::intersect",
+                || format!("{kind}: hit {hit:?} not on the surface ({on:?})"),
+            );
+        }
+    }
+    if f.chance(10) {
+        let tolerance = if f.chance(3) {
+            f.number()
+        } else {
+            bounds.extent().amax() * 10f64.powf(f.rng.range(-3.0, -1.0))
+        };
+        if let Some(Ok(mesh)) = f.call("tessellate", || s.mesh(tolerance)) {
+            f.check(sane_mesh(&mesh), "tessellate", || {
+                format!("{kind}: a NaN in the mesh")
+            });
+        }
+    }
+}
+
+/// A model of patches: intersection without panic or NaN.
+fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
+    let b = m.bounds();
+    for _ in 0..3 {
+        let ray = ray_at(f, &b);
+        if let Some(Some((k, hit))) = f.call("BezierPatches::intersect_patch", || {
+            m.intersect_patch(&ray, 0.0, f64::INFINITY)
+        }) {
+            f.check(
+                k < m.len() && sane_hit(&hit, 0.0, f64::INFINITY),
+                "BezierPatches",
+                || format!("{ray:?}: {k} {hit:?}"),
+            );
+        }
+    }
+}
+
+/// The tensor surfaces' `tessellate`, behind one name.
+trait TensorMesh {
+    fn mesh(&self, tolerance: f64) -> Result<Mesh, Error>;
+}
+
+impl TensorMesh for BezierSurface {
+    fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
+        self.tessellate(tolerance)
+    }
+}
+
+impl TensorMesh for BSplineSurface {
+    fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
+        self.tessellate(tolerance)
+    }
+}
+
+impl TensorMesh for NurbsSurface {
+    fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
+        self.tessellate(tolerance)
+    }
+}
+
+/// No NaN anywhere in a mesh.
+fn sane_mesh(m: &Mesh) -> bool {
+    m.positions.iter().all(finite_point)
+        && m.normals.iter().all(unit_vector)
+        && m.uvs.iter().all(|(u, v)| u.is_finite() && v.is_finite())
+        && m.bound.is_finite()
 }

@@ -179,19 +179,35 @@ fn search_patch(
     let (o, e1, e2, dh, dn) = (frame.o, frame.e1, frame.e2, frame.dh, frame.dn);
     let t_floor = frame.t_floor;
     let mut best = None;
-    // Coefficients (α, β, γ, w) of the patch, and the size that bounds
-    // every coefficient and its rounding.
-    let mut magnitude = 0.0_f64;
+    // Coefficients (α, β, γ, w) of the patch and, for each of α, β, γ
+    // (`e · (wP − w·o)` for its unit vector `e`), the size that bounds its
+    // coefficients and their rounding, `Σₖ |eₖ|(|wPₖ| + |oₖ|w)`, and the
+    // same per unit weight (what bounds the rounding of a point's
+    // coordinate `(α, β, γ)/w`, a ratio of convex combinations, whatever
+    // the weights). Each function gets its own bound, so that a coordinate
+    // the ray's planes do not see (a control point far along the ray) does
+    // not blur them.
+    let mut magnitude = [0.0_f64; 3];
+    let mut spatial = [0.0_f64; 3];
+    let axes = [e1.abs(), e2.abs(), dh.abs()];
+    let oa = o.abs();
     for (slot, h) in buf[..n].iter_mut().zip(&patch.net) {
         let rel = h.wp - o * h.w;
         *slot = [e1.dot(&rel), e2.dot(&rel), dh.dot(&rel), h.w];
-        magnitude = magnitude.max(h.wp.abs().sum() + o.abs().sum() * h.w);
+        let size = h.wp.abs() + oa * h.w;
+        for f in 0..3 {
+            let m = axes[f].dot(&size);
+            magnitude[f] = magnitude[f].max(m);
+            spatial[f] = spatial[f].max(m / h.w);
+        }
     }
     // Rounding of the coefficients as computed, and what each subdivision
     // (de Casteljau: convex combinations, `max(p, q)` levels of at most
     // three roundings each) adds.
-    let err = 8.0 * f64::EPSILON * magnitude;
-    let step = 2.0 * (p.max(q) + 1) as f64 * f64::EPSILON * magnitude;
+    let err = magnitude.map(|m| 8.0 * f64::EPSILON * m);
+    let step = magnitude.map(|m| 2.0 * (p.max(q) + 1) as f64 * f64::EPSILON * m);
+    let per_weight: [f64; 3] =
+        std::array::from_fn(|f| spatial[f] / magnitude[f].max(f64::MIN_POSITIVE));
     // Boxes still to search (their coefficients are made again from the
     // patch's when their turn comes); the box at hand is in `work`.
     let mut pending = [Cell {
@@ -216,7 +232,7 @@ fn search_patch(
             cell.steps += 2;
         }
         loop {
-            let bound = err + step * cell.steps as f64;
+            let bound: Bounds = std::array::from_fn(|f| err[f] + step[f] * cell.steps as f64);
             if excluded(work, bound, t_floor * dn, t_best * dn) {
                 continue 'cells;
             }
@@ -233,12 +249,16 @@ fn search_patch(
             // A box whose image is within the acceptance of one point (a
             // thin box at a collapsed edge, where the Jacobian is singular
             // and neither clipping across the edge nor Krawczyk's test can
-            // finish): its corner `(s₀, t₀)`, which is the surface point
+            // finish; or a whole patch no bigger than the rounding of its
+            // coordinates; tried on those only, as it costs a pass of
+            // divisions): its corner `(s₀, t₀)`, which is the surface point
             // at that corner, is the hit if it is within the acceptance of
             // the ray. If the box held a root, the corner would be within
             // the box's extent of it, so a corner farther off the ray
             // rules a root out.
-            if (ws <= SMALL || wt <= SMALL) && extent(work, bound) <= frame.accept {
+            let whole = cell.s == (0.0, 1.0) && cell.t == (0.0, 1.0);
+            let noise = || (0..3).map(|f| bound[f] * per_weight[f]).sum();
+            if (whole || ws <= SMALL || wt <= SMALL) && extent(work, noise()) <= frame.accept {
                 let c = work[0];
                 let off = c[0].hypot(c[1]) / c[3];
                 let t_hit = c[2] / c[3] / dn;
@@ -255,7 +275,7 @@ fn search_patch(
             }
             // A box that holds exactly one root (Krawczyk's test) is
             // finished by Newton's method if it lands inside the box.
-            if ws.max(wt) <= TRY_UNIQUE && unique_root(work, p, q, bound) {
+            if ws.max(wt) <= TRY_UNIQUE && unique_root(work, p, q, [bound[0], bound[1]]) {
                 if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
                     let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
                     let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
@@ -274,7 +294,7 @@ fn search_patch(
             }
             // Bézier clipping: the parameter ranges outside which the
             // hull of a distance function stays off zero hold no root.
-            let Some((s_range, t_range)) = clip(work, (p, q), bound) else {
+            let Some((s_range, t_range)) = clip(work, (p, q), [bound[0], bound[1]]) else {
                 continue 'cells;
             };
             let kept = (s_range.1 - s_range.0) * (t_range.1 - t_range.0);
@@ -291,6 +311,14 @@ fn search_patch(
                     restrict_lines(work, p, q, false, t_range);
                     cell.t = new_t;
                     cell.steps += 2;
+                }
+                if cell.steps > FRESH_AFTER {
+                    // Restricted so often that its rounding bound grows:
+                    // made again from the patch's own coefficients.
+                    work.copy_from_slice(own);
+                    restrict_lines(work, p, q, true, cell.s);
+                    restrict_lines(work, p, q, false, cell.t);
+                    cell.steps = 4;
                 }
                 continue;
             }
@@ -342,26 +370,28 @@ fn search_patch(
     best
 }
 
+/// A box made by more subdivisions than this is made again from its patch's
+/// coefficients (four), which keeps its rounding bound small.
+const FRESH_AFTER: u32 = 24;
+
 /// A clipped box is clipped again (rather than halved) while it keeps at
 /// most this fraction of its area.
 const CLIP_ENOUGH: f64 = 0.64;
 
 /// A bound on the diameter of the box's image: the sum of the ranges of
 /// its control points' coordinates `(α, β, γ)/w` in the ray's orthonormal
-/// frame, widened by their rounding.
-fn extent(coef: &[[f64; 4]], bound: f64) -> f64 {
+/// frame, widened by their rounding (`noise` in all, in those units).
+fn extent(coef: &[[f64; 4]], noise: f64) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    let mut least_w = f64::INFINITY;
     for c in coef {
-        least_w = least_w.min(c[3]);
         for a in 0..3 {
             let x = c[a] / c[3];
             lo[a] = lo[a].min(x);
             hi[a] = hi[a].max(x);
         }
     }
-    (0..3).map(|a| hi[a] - lo[a]).sum::<f64>() + 6.0 * bound / least_w
+    (0..3).map(|a| hi[a] - lo[a]).sum::<f64>() + 2.0 * noise
 }
 
 /// The sub-range `r` (of `[0, 1]`) of the interval `x`.
@@ -384,7 +414,11 @@ fn within(x: (f64, f64), r: (f64, f64)) -> (f64, f64) {
 /// `d = 0` there is no root. The same with the roles of `s` and `t`
 /// exchanged. The ends are widened by `8ε` for the rounding of the hull's
 /// crossings.
-fn clip(coef: &[[f64; 4]], (p, q): (usize, usize), bound: f64) -> Option<((f64, f64), (f64, f64))> {
+fn clip(
+    coef: &[[f64; 4]],
+    (p, q): (usize, usize),
+    bound: [f64; 2],
+) -> Option<((f64, f64), (f64, f64))> {
     let cols = q + 1;
     let at = |i: usize, j: usize| coef[i * cols + j];
     // Mean direction of the net along t (last column minus first) and
@@ -450,13 +484,13 @@ fn clip_line(
     q: usize,
     along_s: bool,
     n: [f64; 2],
-    bound: f64,
+    bound: [f64; 2],
 ) -> Option<(f64, f64)> {
     let cols = q + 1;
     let (degree, other) = if along_s { (p, q) } else { (q, p) };
     // Per abscissa, the least and greatest ordinate, widened by the
     // coefficients' rounding and the projection's.
-    let pad = (n[0].abs() + n[1].abs()) * bound;
+    let pad = n[0].abs() * bound[0] + n[1].abs() * bound[1];
     let mut low = [0.0_f64; 33];
     let mut high = [0.0_f64; 33];
     if degree >= low.len() {
@@ -620,6 +654,9 @@ fn split_keep(w: &mut [[f64; 4]], x: f64, left: bool) {
     }
 }
 
+/// Rounding bounds of a box's `α`, `β` and `γ` coefficients.
+type Bounds = [f64; 3];
+
 /// Boxes at most this wide (in both parameters) try the uniqueness test.
 const TRY_UNIQUE: f64 = 1.0 / 8.0;
 
@@ -640,7 +677,7 @@ const TRY_UNIQUE: f64 = 1.0 / 8.0;
 /// Beyond that, `K` must clear the box's sides by `1e-6`.
 // Index loops mirror the matrix formulas.
 #[allow(clippy::needless_range_loop)]
-fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
+fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: [f64; 2]) -> bool {
     let cols = q + 1;
     // Interval Jacobian: rows α, β; columns ∂/∂x₀ (rows of the net), ∂/∂x₁.
     let mut jac = [[(f64::INFINITY, f64::NEG_INFINITY); 2]; 2];
@@ -667,13 +704,13 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
             }
         }
     }
-    for row in jac.iter_mut() {
+    for (f, row) in jac.iter_mut().enumerate() {
         for (k, r) in row.iter_mut().enumerate() {
             let degree = if k == 0 { p } else { q };
             if degree == 0 {
                 *r = (0.0, 0.0);
             }
-            let pad = 2.0 * degree as f64 * bound;
+            let pad = 2.0 * degree as f64 * bound[f];
             let own = 2.0 * f64::EPSILON * r.0.abs().max(r.1.abs());
             *r = (r.0 - pad - own, r.1 + pad + own);
         }
@@ -684,10 +721,10 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
     }
     let mut centre = [0.0_f64; 2];
     // Averages round by at most ε/2 of the largest coefficient each.
-    let largest = coef
-        .iter()
-        .fold(0.0_f64, |m, c| m.max(c[0].abs()).max(c[1].abs()));
-    let f_bound = bound + 0.5 * (p + q) as f64 * f64::EPSILON * largest;
+    let f_bound: [f64; 2] = std::array::from_fn(|f| {
+        let largest = coef.iter().fold(0.0_f64, |m, c| m.max(c[f].abs()));
+        bound[f] + 0.5 * (p + q) as f64 * f64::EPSILON * largest
+    });
     for (f, value) in centre.iter_mut().enumerate() {
         let mut row_values = [0.0_f64; 32];
         for (i, slot) in row_values.iter_mut().enumerate().take(p + 1) {
@@ -715,7 +752,7 @@ fn unique_root(coef: &[[f64; 4]], p: usize, q: usize, bound: f64) -> bool {
     for i in 0..2 {
         // c − Y F(c), with F(c) ± f_bound.
         let yf = y[i][0] * centre[0] + y[i][1] * centre[1];
-        let mut radius = (y[i][0].abs() + y[i][1].abs()) * f_bound;
+        let mut radius = y[i][0].abs() * f_bound[0] + y[i][1].abs() * f_bound[1];
         // Magnitudes of the terms summed, for their rounding.
         let mut terms = (y[i][0] * centre[0]).abs() + (y[i][1] * centre[1]).abs() + 0.5;
         // (I − Y J)(x − c), x − c ∈ [−½, ½]².
@@ -764,19 +801,19 @@ fn min_distance(coef: &[[f64; 4]]) -> f64 {
 /// or above `hi` (with slack for rounding), or all points `(αᵢⱼ, βᵢⱼ)` on
 /// the far side of a line through the origin (perpendicular to their mean,
 /// by more than the projection's rounding: `|g|₁ = 1`, so `2·bound`).
-fn excluded(coef: &[[f64; 4]], bound: f64, lo: f64, hi: f64) -> bool {
+fn excluded(coef: &[[f64; 4]], bound: Bounds, lo: f64, hi: f64) -> bool {
     let (mut a_pos, mut a_neg, mut b_pos, mut b_neg) = (true, true, true, true);
     let (mut g_lo, mut g_hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for c in coef {
-        a_pos &= c[0] > bound;
-        a_neg &= c[0] < -bound;
-        b_pos &= c[1] > bound;
-        b_neg &= c[1] < -bound;
+        a_pos &= c[0] > bound[0];
+        a_neg &= c[0] < -bound[0];
+        b_pos &= c[1] > bound[1];
+        b_neg &= c[1] < -bound[1];
         let g = c[2] / c[3];
         g_lo = g_lo.min(g);
         g_hi = g_hi.max(g);
     }
-    let slack = bound / coef.iter().fold(f64::INFINITY, |m, c| m.min(c[3]));
+    let slack = bound[2] / coef.iter().fold(f64::INFINITY, |m, c| m.min(c[3]));
     if a_pos || a_neg || b_pos || b_neg || g_hi < lo - slack || g_lo > hi + slack {
         return true;
     }
@@ -794,7 +831,8 @@ fn excluded(coef: &[[f64; 4]], bound: f64, lo: f64, hi: f64) -> bool {
         return false;
     }
     let (ga, gb) = (ga / norm, gb / norm);
-    coef.iter().all(|c| ga * c[0] + gb * c[1] > 2.0 * bound)
+    let margin = 2.0 * (ga.abs() * bound[0] + gb.abs() * bound[1]);
+    coef.iter().all(|c| ga * c[0] + gb * c[1] > margin)
 }
 
 /// Splits the box coefficients `parent` at the middle of `s` (rows) or of

@@ -359,7 +359,7 @@ impl PatchTable {
             / (du.1 - du.0).min(dv.1 - dv.0);
         let negligible = (1e-7 * typical) * (1e-7 * typical);
         if n.norm() > negligible {
-            return Unit::try_new(n, 0.0);
+            return unit(n);
         }
         let d = self.jet(u, v, 2);
         // N(u + h·du, v + h·dv) = N + h·N₁ + O(h²) toward the domain's
@@ -370,7 +370,7 @@ impl PatchTable {
             + (d[1][1].cross(&sv) + su.cross(&d[0][2])) * dir_v;
         let wide = (du.1 - du.0).max(dv.1 - dv.0);
         if n1.norm() * wide > negligible {
-            let n1 = Unit::try_new(n1, 0.0)?;
+            let n1 = unit(n1)?;
             // At a collapsed edge the limit is a tangent plane only if every
             // direction leaving the edge lies in it (else a cone point).
             return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
@@ -391,7 +391,9 @@ impl PatchTable {
             if !resolved {
                 break;
             }
-            let n = Unit::new_normalize(n);
+            let Some(n) = unit(n) else {
+                break;
+            };
             if let Some(previous) = last {
                 converged = (n.into_inner() - previous.into_inner()).norm() < 1e-3;
             }
@@ -498,6 +500,17 @@ impl PatchTable {
         let pad = 16.0 * (p + q + 2) as f64 * f64::EPSILON * magnitude;
         boxed.expand(pad)
     }
+}
+
+/// `v` normalized, scaled first by its largest component so that neither
+/// huge nor tiny components overflow or underflow; `None` for a zero or
+/// non-finite vector.
+pub(crate) fn unit(v: Vector3<f64>) -> Option<Unit<Vector3<f64>>> {
+    let m = v.amax();
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    Unit::try_new(v / m, 0.0)
 }
 
 /// Replaces the Bernstein coefficients `c` on `[0, 1]` by those of the same
