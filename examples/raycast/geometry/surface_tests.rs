@@ -154,7 +154,7 @@ fn the_teapot_lid_is_hit_at_its_knob() {
 fn a_models_hierarchy_finds_the_nearest_patch() {
     // Rays from a sphere round the teapot toward points in its box: the
     // world's hit is the nearest of the hits of all 32 patches, each
-    // intersected on its own.
+    // intersected on its own (to the last few bits).
     let patches = teapot();
     let w = world(SurfaceBody::Patches(
         BezierPatches::new(patches.clone()).unwrap(),
@@ -182,7 +182,13 @@ fn a_models_hierarchy_finds_the_nearest_patch() {
         match first_hit(&w, &ray) {
             Some(h) => {
                 hits += 1;
-                assert_eq!(h.t, brute, "{ray:?}");
+                // Both polished to full precision; the model's tolerance
+                // scale (its whole box) may stop Newton one step apart.
+                assert!(
+                    (h.t - brute).abs() <= 1e-14 * brute,
+                    "{ray:?}: {} vs {brute}",
+                    h.t
+                );
             }
             None => assert!(
                 brute.is_infinite(),
