@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Runs the `intersect` bench of a base commit and of the working tree
+# alternately and prints the medians (issue 19: "against commit cc923c0, run
+# alternately").
+#
+# Usage: scripts/compare_with_base.sh [BASE]      (BASE defaults to cc923c0)
+#
+# Environment (all optional):
+#   ROUNDS         runs of each side, alternating base, head, base, ... (3)
+#   FILTER         criterion filter (a regex on the bench id); by default the
+#                  single-ray ids that exist at cc923c0 and here, and the batch
+#                  groups (they exist only here)
+#   BASE_WORKTREE  where the base commit is checked out (a git worktree; made
+#                  if missing; default: a new temporary directory)
+#   CALLGRIND_RAYS if set and valgrind is installed: instruction counts of
+#                  `ray_profile glass N` and `ray_profile vase N` on both sides
+#                  (100000 is the usual N)
+#
+# Both sides build in this checkout's target directory (dependencies are built
+# once); the binaries are copied out right after each build, because the two
+# revolve builds may share artifact names. Needs git, cargo and python3.
+set -euo pipefail
+
+BASE=${1:-cc923c0}
+ROUNDS=${ROUNDS:-3}
+FILTER=${FILTER:-'^intersect_(wine_glass|vase)/exact/random$|^intersect_triangle/moller_trumbore/random$|^intersect_batch_'}
+ROOT=$(git rev-parse --show-toplevel)
+export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$ROOT/target}
+OUT=$(mktemp -d)
+BASE_WORKTREE=${BASE_WORKTREE:-$OUT/base-worktree}
+if [ ! -e "$BASE_WORKTREE" ]; then
+    git -C "$ROOT" worktree add --detach "$BASE_WORKTREE" "$BASE" >&2
+fi
+echo "base $(git -C "$BASE_WORKTREE" rev-parse --short HEAD) in $BASE_WORKTREE;" \
+    "head $(git -C "$ROOT" rev-parse --short HEAD) (plus uncommitted changes) in $ROOT;" \
+    "results in $OUT" >&2
+
+# The executable cargo reports for a build (the last one listed).
+executable() {
+    grep -o '"executable":"[^"]*"' | tail -n 1 | sed 's/"executable":"\(.*\)"/\1/'
+}
+
+# build SIDE DIR: the bench (and ray_profile) of the checkout DIR, copied to
+# $OUT/SIDE-*.
+build() {
+    local side=$1 dir=$2
+    (cd "$dir" && nice -n 10 cargo bench --bench intersect --no-run --message-format=json) \
+        | executable | xargs -I{} cp {} "$OUT/$side-intersect"
+    if [ -n "${CALLGRIND_RAYS:-}" ]; then
+        (cd "$dir" && nice -n 10 cargo build --release --example ray_profile --message-format=json) \
+            | executable | xargs -I{} cp {} "$OUT/$side-ray_profile"
+    fi
+}
+build base "$BASE_WORKTREE"
+build head "$ROOT"
+
+for round in $(seq 1 "$ROUNDS"); do
+    for side in base head; do
+        echo "round $round: $side" >&2
+        CRITERION_HOME="$OUT/criterion-$side-$round" \
+            "$OUT/$side-intersect" --bench "$FILTER" > "$OUT/$side-$round.log" 2>&1
+    done
+done
+
+python3 - "$OUT" "$ROUNDS" <<'PY'
+import json, os, re, statistics, sys
+
+out, rounds = sys.argv[1], int(sys.argv[2])
+
+def medians(side):
+    """Bench id -> the per-run medians (ns per iteration) of every round."""
+    runs = {}
+    for r in range(1, rounds + 1):
+        home = os.path.join(out, f"criterion-{side}-{r}")
+        for dirpath, _, files in os.walk(home):
+            if os.path.basename(dirpath) == "new" and "estimates.json" in files:
+                bench = os.path.relpath(os.path.dirname(dirpath), home)
+                with open(os.path.join(dirpath, "estimates.json")) as f:
+                    runs.setdefault(bench, []).append(json.load(f)["median"]["point_estimate"])
+    return runs
+
+base, head = medians("base"), medians("head")
+mid = lambda v: statistics.median(v)
+unit = "intersect_triangle/moller_trumbore/random"
+print(f"median of {rounds} alternating runs each, ns per ray (median of each run's samples)")
+print(f"{'bench':48} {'base':>9} {'head':>9} {'head/base':>9} {'head/MT':>8}")
+for bench in sorted(set(base) | set(head)):
+    b = mid(base[bench]) if bench in base else None
+    h = mid(head[bench]) if bench in head else None
+    # A head-only batch id is compared with the base's single-ray time on
+    # the same shape (issue 19's "today's single-ray time").
+    m = re.match(r"intersect_batch_(\w+)/", bench)
+    ref = f"intersect_{m.group(1)}/exact/random" if m else bench
+    rb = mid(base[ref]) if ref in base else None
+    cols = [f"{b:9.1f}" if b else f"{'-':>9}", f"{h:9.1f}" if h else f"{'-':>9}"]
+    cols.append(f"{h / rb:9.3f}" if h and rb else f"{'-':>9}")
+    cols.append(f"{h / mid(head[unit]):8.2f}" if h and unit in head else f"{'-':>8}")
+    note = f"  (vs base {ref})" if ref != bench else ""
+    print(f"{bench:48} {' '.join(cols)}{note}")
+PY
+
+if [ -n "${CALLGRIND_RAYS:-}" ] && command -v valgrind > /dev/null; then
+    echo "instructions (callgrind Ir) of ray_profile SHAPE $CALLGRIND_RAYS, per ray:"
+    for shape in glass vase; do
+        for side in base head; do
+            (cd "$OUT" && valgrind --tool=callgrind --callgrind-out-file="$OUT/callgrind-$side-$shape" \
+                "$OUT/$side-ray_profile" "$shape" "$CALLGRIND_RAYS" > /dev/null 2> "$OUT/callgrind-$side-$shape.log")
+            ir=$(grep -o 'Collected : [0-9]*' "$OUT/callgrind-$side-$shape.log" | grep -o '[0-9]*$')
+            echo "  $shape $side: $ir total, $((ir / CALLGRIND_RAYS)) per ray"
+        done
+    done
+fi
