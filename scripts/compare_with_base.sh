@@ -7,6 +7,8 @@
 #
 # Environment (all optional):
 #   ROUNDS         runs of each side, alternating base, head, base, ... (3)
+#   CRITERION_ARGS extra arguments for each run (e.g. "--measurement-time 2
+#                  --warm-up-time 0.5" for more, shorter rounds)
 #   FILTER         criterion filter (a regex on the bench id); by default the
 #                  single-ray ids that exist at cc923c0 and here, and the batch
 #                  groups (they exist only here)
@@ -58,7 +60,7 @@ for round in $(seq 1 "$ROUNDS"); do
     for side in base head; do
         echo "round $round: $side" >&2
         CRITERION_HOME="$OUT/criterion-$side-$round" \
-            "$OUT/$side-intersect" --bench "$FILTER" > "$OUT/$side-$round.log" 2>&1
+            "$OUT/$side-intersect" --bench "$FILTER" ${CRITERION_ARGS:-} > "$OUT/$side-$round.log" 2>&1
     done
 done
 
@@ -80,23 +82,33 @@ def medians(side):
     return runs
 
 base, head = medians("base"), medians("head")
-mid = lambda v: statistics.median(v)
 unit = "intersect_triangle/moller_trumbore/random"
-print(f"median of {rounds} alternating runs each, ns per ray (median of each run's samples)")
-print(f"{'bench':48} {'base':>9} {'head':>9} {'head/base':>9} {'head/MT':>8}")
+
+
+def cell(runs, pick):
+    return f"{pick(runs):9.1f}" if runs else f"{'-':>9}"
+
+
+def ratio(a, b, pick):
+    return f"{pick(a) / pick(b):7.3f}" if a and b else f"{'-':>7}"
+
+
+print(f"ns per ray: the median and the best of {rounds} alternating runs per side "
+      "(each run's figure is the median of its samples); ratios of medians and of bests")
+print(f"{'bench':44} {'base med':>9} {'head med':>9} {'base best':>9} {'head best':>9}"
+      f" {'h/b med':>7} {'h/b best':>7} {'h/MT med':>8}")
 for bench in sorted(set(base) | set(head)):
-    b = mid(base[bench]) if bench in base else None
-    h = mid(head[bench]) if bench in head else None
+    b, h = base.get(bench), head.get(bench)
     # A head-only batch id is compared with the base's single-ray time on
     # the same shape (issue 19's "today's single-ray time").
     m = re.match(r"intersect_batch_(\w+)/", bench)
     ref = f"intersect_{m.group(1)}/exact/random" if m else bench
-    rb = mid(base[ref]) if ref in base else None
-    cols = [f"{b:9.1f}" if b else f"{'-':>9}", f"{h:9.1f}" if h else f"{'-':>9}"]
-    cols.append(f"{h / rb:9.3f}" if h and rb else f"{'-':>9}")
-    cols.append(f"{h / mid(head[unit]):8.2f}" if h and unit in head else f"{'-':>8}")
-    note = f"  (vs base {ref})" if ref != bench else ""
-    print(f"{bench:48} {' '.join(cols)}{note}")
+    rb = base.get(ref)
+    med, best = statistics.median, min
+    cols = [cell(b, med), cell(h, med), cell(b, best), cell(h, best),
+            ratio(h, rb, med), ratio(h, rb, best), ratio(h, head.get(unit), med)]
+    note = f"  (base: {ref})" if ref != bench else ""
+    print(f"{bench:44} {' '.join(cols)}{note}")
 PY
 
 if [ -n "${CALLGRIND_RAYS:-}" ] && command -v valgrind > /dev/null; then
