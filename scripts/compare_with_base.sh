@@ -14,9 +14,9 @@
 #                  groups (they exist only here)
 #   BASE_WORKTREE  where the base commit is checked out (a git worktree; made
 #                  if missing; default: a new temporary directory)
-#   CALLGRIND_RAYS if set and valgrind is installed: instruction counts of
-#                  `ray_profile glass N` and `ray_profile vase N` on both sides
-#                  (100000 is the usual N)
+#   CALLGRIND_RAYS N: if set and valgrind is installed, instructions per ray
+#                  of `ray_profile glass` and `ray_profile vase` on both sides,
+#                  from N and 2N rays (100000 is the usual N)
 #
 # Both sides build in this checkout's target directory (dependencies are built
 # once); the binaries are copied out right after each build, because the two
@@ -112,13 +112,20 @@ for bench in sorted(set(base) | set(head)):
 PY
 
 if [ -n "${CALLGRIND_RAYS:-}" ] && command -v valgrind > /dev/null; then
-    echo "instructions (callgrind Ir) of ray_profile SHAPE $CALLGRIND_RAYS, per ray:"
+    # Per ray without the set-up: the difference between N and 2N rays,
+    # divided by N (as docs/performance.md measures).
+    n=$CALLGRIND_RAYS
+    echo "instructions per ray (callgrind Ir of ray_profile SHAPE 2N minus SHAPE N, over N = $n):"
     for shape in glass vase; do
         for side in base head; do
-            (cd "$OUT" && valgrind --tool=callgrind --callgrind-out-file="$OUT/callgrind-$side-$shape" \
-                "$OUT/$side-ray_profile" "$shape" "$CALLGRIND_RAYS" > /dev/null 2> "$OUT/callgrind-$side-$shape.log")
-            ir=$(grep -o 'Collected : [0-9]*' "$OUT/callgrind-$side-$shape.log" | grep -o '[0-9]*$')
-            echo "  $shape $side: $ir total, $((ir / CALLGRIND_RAYS)) per ray"
+            irs=()
+            for rays in "$n" $((2 * n)); do
+                log="$OUT/callgrind-$side-$shape-$rays.log"
+                (cd "$OUT" && valgrind --tool=callgrind --callgrind-out-file="$OUT/callgrind-$side-$shape-$rays" \
+                    "$OUT/$side-ray_profile" "$shape" "$rays" > /dev/null 2> "$log")
+                irs+=("$(grep -o 'Collected : [0-9]*' "$log" | grep -o '[0-9]*$')")
+            done
+            echo "  $shape $side: $(((irs[1] - irs[0]) / n)) per ray (${irs[0]} with set-up for N)"
         done
     done
 fi
