@@ -25,17 +25,36 @@
 //! - `grazing`: along the tangent plane of a random surface point, starting
 //!   outside (near-tangent rays on silhouettes, the hard case).
 //!
-//! Run: `cargo bench --bench intersect` (CI: `-- --test`). The hit rate of
-//! every set is printed once.
+//! Batches (`intersect_batch_*`, issue 19): the single-ray `intersect` and
+//! `Intersect::intersect_batch` on the same rays in batches of
+//! [`LANES`], each iteration one batch, the measured time divided by
+//! `LANES`: the median reads as time per ray, like every other figure here
+//! (`intersect_triangle/moller_trumbore/random` is the unit). Ray sets:
+//! `random` (as above, the same rays as `exact/random`) and `camera`, the
+//! primary rays of a pinhole camera looking at the object (64×64 pixels,
+//! each batch 8 neighbouring pixels of one row: coherent rays).
+//!
+//! Run: `cargo bench --bench intersect` (CI: `-- --test`); the batch groups
+//! and their unit alone: `cargo bench --bench intersect --
+//! 'intersect_batch|intersect_triangle'`. The hit rate of every set is
+//! printed once.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 #[path = "../examples/accuracy_cost/patch_shapes.rs"]
 mod patch_shapes;
+// The ray caster's pinhole camera (its module names it `crate::scene::Camera`).
+#[path = "../examples/raycast/camera.rs"]
+#[allow(dead_code)]
+mod camera;
+#[path = "../examples/raycast/scene.rs"]
+#[allow(dead_code)]
+mod scene;
 
 use std::hint::black_box;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
+use camera::PinholeCamera;
 use common::Rng;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Unit, Vector3};
@@ -177,6 +196,8 @@ fn benches(c: &mut Criterion) {
     let glass = Revolution::new(glass_profile);
     bench_surface(c, "vase", &vase);
     bench_surface(c, "wine_glass", &glass);
+    bench_batches(c, "vase", &vase);
+    bench_batches(c, "wine_glass", &glass);
 
     // The baseline: one triangle, rays through its bounding box.
     let tri = [
@@ -203,6 +224,97 @@ fn benches(c: &mut Criterion) {
     bench_cylinder_floor(c);
     bench_sphere_floor(c);
     bench_patches(c);
+}
+
+/// Rays per batch in the batch benches: the widest SIMD batch issue 19
+/// asks for.
+const LANES: usize = 8;
+
+/// Pixels per side of the camera's image.
+const CAMERA_PIXELS: u32 = 64;
+
+/// The primary rays of a pinhole camera looking at the centre of `b` from
+/// the direction `(0.35, 0.25, 1)` (slightly above and to the side), at
+/// three times the radius of `b`'s bounding sphere, its vertical field of
+/// view just wide enough for that sphere: [`CAMERA_PIXELS`]² rays through
+/// the pixel centres, row by row, so consecutive [`LANES`] rays are
+/// neighbours in one row.
+fn camera_rays(b: &Aabb) -> Vec<Ray> {
+    let radius = 0.5 * b.extent().norm();
+    let back = Vector3::new(0.35, 0.25, 1.0).normalize();
+    let distance = 3.0 * radius;
+    let camera = PinholeCamera::new(&scene::Camera {
+        center: b.center() + back * distance,
+        direction: -back,
+        up: Vector3::y(),
+        angle_degrees: 2.0 * (radius / distance).asin().to_degrees(),
+        width: CAMERA_PIXELS,
+        height: CAMERA_PIXELS,
+    });
+    (0..CAMERA_PIXELS)
+        .flat_map(|y| (0..CAMERA_PIXELS).map(move |x| (x, y)))
+        .map(|(x, y)| camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
+        .collect()
+}
+
+/// Benchmarks `one_batch(k)` (the `k`-th batch of [`LANES`] rays, cycled
+/// over `batches`) and reports the time per ray.
+fn bench_per_ray(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: BenchmarkId,
+    batches: usize,
+    mut one_batch: impl FnMut(usize),
+) {
+    group.bench_function(id, |bench| {
+        bench.iter_custom(|iters| {
+            let start = Instant::now();
+            for k in 0..iters {
+                one_batch(k as usize % batches);
+            }
+            start.elapsed() / LANES as u32
+        })
+    });
+}
+
+/// The single-ray `intersect` (`single`) and `intersect_batch` in batches
+/// of [`LANES`] (`batch8`) on the same random and camera rays, as time per
+/// ray; the set-up checks that both give the same hits.
+fn bench_batches<S: BoundedSurface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
+    let b = s.bounds();
+    let sets = [
+        ("random", box_rays(&b, false, 1)),
+        ("camera", camera_rays(&b)),
+    ];
+    let ranges = [(0.0, f64::INFINITY); LANES];
+    let mut group = c.benchmark_group(format!("intersect_batch_{name}"));
+    for (set, rays) in &sets {
+        assert_eq!(rays.len() % LANES, 0);
+        let batches = rays.len() / LANES;
+        let mut hits = vec![None; rays.len()];
+        for (chunk, out) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
+            s.intersect_batch(chunk, &ranges, out);
+        }
+        for (ray, hit) in rays.iter().zip(&hits) {
+            assert_eq!(*hit, s.intersect(ray, 0.0, f64::INFINITY), "{ray:?}");
+        }
+        let count = hits.iter().flatten().count();
+        eprintln!(
+            "{name}/{set}: {count} of {} rays hit (single and batch agree)",
+            rays.len()
+        );
+        bench_per_ray(&mut group, BenchmarkId::new("single", set), batches, |k| {
+            for ray in &rays[k * LANES..(k + 1) * LANES] {
+                black_box(black_box(s).intersect(black_box(ray), 0.0, f64::INFINITY));
+            }
+        });
+        let mut out = [None; LANES];
+        bench_per_ray(&mut group, BenchmarkId::new("batch8", set), batches, |k| {
+            let lanes = black_box(&rays[k * LANES..(k + 1) * LANES]);
+            black_box(s).intersect_batch(lanes, &ranges, &mut out);
+            black_box(&out);
+        });
+    }
+    group.finish();
 }
 
 /// Radius and height of [`common::CYLINDER`].
