@@ -160,62 +160,11 @@ impl Bvh {
         mut t_max: f64,
         mut leaf: impl FnMut(usize, f64) -> ControlFlow<(), f64>,
     ) {
-        let Some(root) = self.nodes.first() else {
-            return;
-        };
-        if root.enter(ray, t_min, t_max).is_none() {
-            return;
-        }
-        // Two plain arrays (not an array of pairs): zeroing them is one
-        // bulk fill, not one store per padded pair.
-        let mut stack_node = [0u32; STACK];
-        let mut stack_t = [0.0f64; STACK];
-        let mut sp = 0;
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if n.count > 0 {
-                let start = n.start as usize;
-                for k in start..start + n.count as usize {
-                    match leaf(k, t_max) {
-                        ControlFlow::Continue(t) => t_max = t,
-                        ControlFlow::Break(()) => return,
-                    }
-                }
-            } else {
-                let (l, r) = (node + 1, n.start as usize);
-                let tl = self.nodes[l].enter(ray, t_min, t_max);
-                let tr = self.nodes[r].enter(ray, t_min, t_max);
-                match (tl, tr) {
-                    (Some(a), Some(b)) => {
-                        let (near, far, t_far) = if a <= b { (l, r, b) } else { (r, l, a) };
-                        stack_node[sp] = far as u32;
-                        stack_t[sp] = t_far;
-                        sp += 1;
-                        node = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = r;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            // Pop the next subtree that may still hold a nearer hit.
-            loop {
-                if sp == 0 {
-                    return;
-                }
-                sp -= 1;
-                if stack_t[sp] <= t_max {
-                    node = stack_node[sp] as usize;
-                    break;
-                }
+        let mut walk = Walk::new(self, ray, t_min, t_max);
+        while let Some(k) = walk.next(self, ray, t_min, t_max) {
+            match leaf(k, t_max) {
+                ControlFlow::Continue(t) => t_max = t,
+                ControlFlow::Break(()) => return,
             }
         }
     }
@@ -240,6 +189,92 @@ impl Bvh {
             0
         } else {
             go(&self.nodes, 0)
+        }
+    }
+}
+
+/// A traversal that can be paused at every item: [`Walk::next`] yields the
+/// items [`Bvh::traverse`] would pass to its callback, in the same order,
+/// given the current `t_max` each time; so several rays can walk the tree
+/// side by side and have their items tested together.
+#[derive(Debug, Clone)]
+pub struct Walk {
+    // Two plain arrays (not an array of pairs): zeroing them is one bulk
+    // fill, not one store per padded pair.
+    stack_node: [u32; STACK],
+    stack_t: [f64; STACK],
+    sp: usize,
+    /// The node to enter next, if any (else pop the stack).
+    node: Option<usize>,
+    /// The items of the current leaf still to yield.
+    items: std::ops::Range<usize>,
+}
+
+impl Walk {
+    /// A walk of `bvh` for the ray: empty unless it enters the root box
+    /// within `[t_min, t_max]`.
+    #[inline]
+    pub fn new(bvh: &Bvh, ray: &BoxRay, t_min: f64, t_max: f64) -> Walk {
+        let enters = bvh
+            .nodes
+            .first()
+            .is_some_and(|root| root.enter(ray, t_min, t_max).is_some());
+        Walk {
+            stack_node: [0; STACK],
+            stack_t: [0.0; STACK],
+            sp: 0,
+            node: enters.then_some(0),
+            items: 0..0,
+        }
+    }
+
+    /// The next item to test, `t_max` being the nearest hit so far (the
+    /// walk skips subtrees beyond it); `None` when the walk is over. Pass
+    /// the same `bvh`, `ray` and `t_min` as to [`Walk::new`].
+    #[inline]
+    pub fn next(&mut self, bvh: &Bvh, ray: &BoxRay, t_min: f64, t_max: f64) -> Option<usize> {
+        loop {
+            if let Some(k) = self.items.next() {
+                return Some(k);
+            }
+            if let Some(node) = self.node {
+                let n = &bvh.nodes[node];
+                if n.count > 0 {
+                    let start = n.start as usize;
+                    self.items = start..start + n.count as usize;
+                    self.node = None;
+                    continue;
+                }
+                let (l, r) = (node + 1, n.start as usize);
+                let tl = bvh.nodes[l].enter(ray, t_min, t_max);
+                let tr = bvh.nodes[r].enter(ray, t_min, t_max);
+                self.node = match (tl, tr) {
+                    (Some(a), Some(b)) => {
+                        let (near, far, t_far) = if a <= b { (l, r, b) } else { (r, l, a) };
+                        self.stack_node[self.sp] = far as u32;
+                        self.stack_t[self.sp] = t_far;
+                        self.sp += 1;
+                        Some(near)
+                    }
+                    (Some(_), None) => Some(l),
+                    (None, Some(_)) => Some(r),
+                    (None, None) => None,
+                };
+                if self.node.is_some() {
+                    continue;
+                }
+            }
+            // Pop the next subtree that may still hold a nearer hit.
+            loop {
+                if self.sp == 0 {
+                    return None;
+                }
+                self.sp -= 1;
+                if self.stack_t[self.sp] <= t_max {
+                    self.node = Some(self.stack_node[self.sp] as usize);
+                    break;
+                }
+            }
         }
     }
 }
