@@ -108,7 +108,7 @@ impl std::ops::AddAssign for IntersectStats {
 }
 
 /// The nearest hit `local` of `ray`, on `placed`, in the world.
-#[inline]
+#[inline(always)]
 fn surface_hit(ray: &Ray, placed: &Placed, local: LocalHit) -> Option<SurfaceHit> {
     let h = placed.to_world(local);
     // A zero normal cannot come from a valid shape; face the ray then.

@@ -160,11 +160,62 @@ impl Bvh {
         mut t_max: f64,
         mut leaf: impl FnMut(usize, f64) -> ControlFlow<(), f64>,
     ) {
-        let mut walk = Walk::new(self, ray, t_min, t_max);
-        while let Some(k) = walk.next(self, ray, t_min, t_max) {
-            match leaf(k, t_max) {
-                ControlFlow::Continue(t) => t_max = t,
-                ControlFlow::Break(()) => return,
+        let Some(root) = self.nodes.first() else {
+            return;
+        };
+        if root.enter(ray, t_min, t_max).is_none() {
+            return;
+        }
+        // Two plain arrays (not an array of pairs): zeroing them is one
+        // bulk fill, not one store per padded pair.
+        let mut stack_node = [0u32; STACK];
+        let mut stack_t = [0.0f64; STACK];
+        let mut sp = 0;
+        let mut node = 0usize;
+        loop {
+            let n = &self.nodes[node];
+            if n.count > 0 {
+                let start = n.start as usize;
+                for k in start..start + n.count as usize {
+                    match leaf(k, t_max) {
+                        ControlFlow::Continue(t) => t_max = t,
+                        ControlFlow::Break(()) => return,
+                    }
+                }
+            } else {
+                let (l, r) = (node + 1, n.start as usize);
+                let tl = self.nodes[l].enter(ray, t_min, t_max);
+                let tr = self.nodes[r].enter(ray, t_min, t_max);
+                match (tl, tr) {
+                    (Some(a), Some(b)) => {
+                        let (near, far, t_far) = if a <= b { (l, r, b) } else { (r, l, a) };
+                        stack_node[sp] = far as u32;
+                        stack_t[sp] = t_far;
+                        sp += 1;
+                        node = near;
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        node = l;
+                        continue;
+                    }
+                    (None, Some(_)) => {
+                        node = r;
+                        continue;
+                    }
+                    (None, None) => {}
+                }
+            }
+            // Pop the next subtree that may still hold a nearer hit.
+            loop {
+                if sp == 0 {
+                    return;
+                }
+                sp -= 1;
+                if stack_t[sp] <= t_max {
+                    node = stack_node[sp] as usize;
+                    break;
+                }
             }
         }
     }
@@ -196,7 +247,9 @@ impl Bvh {
 /// A traversal that can be paused at every item: [`Walk::next`] yields the
 /// items [`Bvh::traverse`] would pass to its callback, in the same order,
 /// given the current `t_max` each time; so several rays can walk the tree
-/// side by side and have their items tested together.
+/// side by side and have their items tested together. (`traverse` keeps its
+/// own loop: built on `Walk`, the single-ray query cost 6% more
+/// instructions, moving the walk's stack.)
 #[derive(Debug, Clone)]
 pub struct Walk {
     // Two plain arrays (not an array of pairs): zeroing them is one bulk
