@@ -227,7 +227,6 @@ pub fn render_world(
 /// alone takes the single-ray query). Each pixel draws from its own
 /// generator in the same order as if it were traced alone, so the image does
 /// not depend on the batching.
-#[allow(clippy::too_many_arguments)]
 fn pixel_run(
     tracer: &Tracer<'_>,
     camera: &PinholeCamera,
