@@ -11,7 +11,7 @@ use crate::geometry::{IntersectStats, LANES, World};
 use crate::parse::parse_file;
 use crate::render::{Options, render};
 use crate::sampling::Rng;
-use crate::scene::{Integrator, Scene};
+use crate::scene::{Integrator, Object, Scene, Shape};
 
 fn scene(name: &str, width: u32, height: u32) -> Scene {
     let path: PathBuf = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -81,22 +81,45 @@ fn batched_renders_equal_single_ray_renders() {
 
 #[test]
 fn world_batches_equal_single_queries() {
-    // The showcase's revolution bodies, mirror sphere and floor, queried by
-    // coherent and scattered rays from the camera, with several `t_min`.
-    let s = scene("showcase", 8, 8);
+    // The showcase's revolution bodies, mirror sphere and floor plus 40
+    // overlapping random spheres, queried by coherent rays from the camera
+    // and by scattered rays from inside the crowd, with several `t_min`:
+    // many rays meet several objects, in every order.
+    let mut s = scene("showcase", 8, 8);
+    let mut rng = Rng::for_pixel(7, 1, 2);
+    let mut point = |rng: &mut Rng, half: f64| {
+        let ((a, b), (c, _)) = (rng.next_2d(), rng.next_2d());
+        Point3::new(
+            half * (2.0 * a - 1.0),
+            0.5 + half * b,
+            half * (2.0 * c - 1.0),
+        )
+    };
+    for _ in 0..40 {
+        let center = point(&mut rng, 3.0);
+        let radius = 0.2 + 0.6 * rng.next_2d().0;
+        s.objects.push(Object {
+            shape: Shape::Sphere { center, radius },
+            material: 0,
+            transform: None,
+        });
+    }
     let world = World::new(&s);
     let eye = Point3::new(0.0, 1.6, 7.5);
-    let mut rng = Rng::for_pixel(7, 1, 2);
     let mut rays = Vec::new();
-    for i in 0..61 {
+    for i in 0..203 {
         let (a, b) = rng.next_2d();
-        // Half the rays fan out narrowly (coherent), half widely.
-        let spread = if i % 2 == 0 { 0.05 } else { 0.8 };
-        let dir = Vector3::new((a - 0.5) * spread, -0.22 + (b - 0.5) * spread, -1.0);
-        rays.push(Ray::new(eye, dir.normalize()));
+        let ray = if i % 2 == 0 {
+            let dir = Vector3::new((a - 0.5) * 0.1, -0.22 + (b - 0.5) * 0.1, -1.0);
+            Ray::new(eye, dir.normalize())
+        } else {
+            let dir = point(&mut rng, 1.0) - Point3::new(0.0, 1.0, 0.0);
+            Ray::new(point(&mut rng, 3.0), dir.normalize())
+        };
+        rays.push(ray);
     }
     let mut hit_count = 0;
-    for t_min in [0.0, 3.0, 7.0] {
+    for t_min in [0.0, 0.5, 3.0] {
         let mut single_stats = IntersectStats::default();
         let single: Vec<_> = rays
             .iter()
@@ -109,5 +132,5 @@ fn world_batches_equal_single_queries() {
         assert_eq!(stats.revolution_calls, single_stats.revolution_calls);
         hit_count += single.iter().flatten().count();
     }
-    assert!(hit_count > 0);
+    assert!(hit_count > 300, "{hit_count} hits");
 }
