@@ -87,7 +87,7 @@ fn world_batches_equal_single_queries() {
     // many rays meet several objects, in every order.
     let mut s = scene("showcase", 8, 8);
     let mut rng = Rng::for_pixel(7, 1, 2);
-    let mut point = |rng: &mut Rng, half: f64| {
+    let point = |rng: &mut Rng, half: f64| {
         let ((a, b), (c, _)) = (rng.next_2d(), rng.next_2d());
         Point3::new(
             half * (2.0 * a - 1.0),
