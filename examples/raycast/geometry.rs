@@ -7,7 +7,8 @@
 //! - [`transform`]: rays into an object's frame by `M⁻¹` (direction not
 //!   normalized, so `t` is the world `t`), normals out by `L⁻ᵀ`.
 //! - [`object`]: a shape and its placement; [`bvh`]: the hierarchy used for
-//!   the world and inside meshes and tubes; [`emitter`]: area-light sampling.
+//!   the world and inside meshes and tubes; [`emitter`]: area-light sampling;
+//!   [`batch`]: the nearest hits of several rays at once.
 //!
 //! Bounded objects sit in a BVH over their world boxes (the box of the local
 //! box's eight corners under the transform); unbounded ones (planes) in a
@@ -15,6 +16,8 @@
 //! shapes, singular transforms) are left out at build time. Queries do not
 //! allocate.
 
+#[path = "geometry/batch.rs"]
+mod batch;
 #[path = "geometry/bvh.rs"]
 mod bvh;
 #[path = "geometry/emitter.rs"]
@@ -50,6 +53,7 @@ use bvh::{BoxRay, Bvh};
 use object::{Placed, Shared};
 use shapes::LocalHit;
 
+pub use batch::LANES;
 pub use emitter::Emitter;
 
 /// Objects per BVH leaf: one, since an object test (a transform, maybe a
@@ -101,6 +105,23 @@ impl std::ops::AddAssign for IntersectStats {
         self.revolution_calls += other.revolution_calls;
         self.revolution_nanos += other.revolution_nanos;
     }
+}
+
+/// The nearest hit `local` of `ray`, on `placed`, in the world.
+#[inline(always)]
+fn surface_hit(ray: &Ray, placed: &Placed, local: LocalHit) -> Option<SurfaceHit> {
+    let h = placed.to_world(local);
+    // A zero normal cannot come from a valid shape; face the ray then.
+    let normal = Unit::try_new(h.normal, 0.0)
+        .filter(|n| n.iter().all(|c| c.is_finite()))
+        .or_else(|| Unit::try_new(-ray.dir, 0.0))?;
+    Some(SurfaceHit {
+        t: h.t,
+        point: h.point,
+        normal,
+        uv: h.uv,
+        object: placed.object,
+    })
 }
 
 /// The scene's objects ready for ray queries (world bounds, BVH).
@@ -185,18 +206,7 @@ impl World {
                 }
             });
         let (placed, local) = best?;
-        let h = placed.to_world(local);
-        // A zero normal cannot come from a valid shape; face the ray then.
-        let normal = Unit::try_new(h.normal, 0.0)
-            .filter(|n| n.iter().all(|c| c.is_finite()))
-            .or_else(|| Unit::try_new(-ray.dir, 0.0))?;
-        Some(SurfaceHit {
-            t: h.t,
-            point: h.point,
-            normal,
-            uv: h.uv,
-            object: placed.object,
-        })
+        surface_hit(ray, placed, local)
     }
 
     /// Whether anything lies on the ray with `t_min < t < t_max` (shadow

@@ -30,6 +30,9 @@ mod whitted;
 mod render_tests;
 
 #[cfg(test)]
+mod batch_tests;
+
+#[cfg(test)]
 mod golden_tests;
 
 #[cfg(test)]

@@ -41,6 +41,7 @@
 use revolve::Ray;
 use revolve::nalgebra::{Point3, Vector3};
 
+use crate::geometry::SurfaceHit;
 use crate::optics;
 use crate::sampling::{self, Rng};
 use crate::scene::{Color, Material};
@@ -55,9 +56,15 @@ fn nonzero(c: &Color) -> bool {
     c.iter().any(|v| *v != 0.0)
 }
 
-/// The radiance arriving along the camera ray `ray` (unit direction),
-/// one path sample.
-pub fn radiance(tracer: &Tracer<'_>, camera_ray: &Ray, rng: &mut Rng, stats: &mut Stats) -> Color {
+/// The radiance arriving along the camera ray `camera_ray` (unit
+/// direction), whose nearest hit is `camera_hit`: one path sample.
+pub fn radiance(
+    tracer: &Tracer<'_>,
+    camera_ray: &Ray,
+    camera_hit: Option<SurfaceHit>,
+    rng: &mut Rng,
+    stats: &mut Stats,
+) -> Color {
     let effects = &tracer.effects;
     let mut ray = *camera_ray;
     let mut t_min = 0.0;
@@ -66,7 +73,11 @@ pub fn radiance(tracer: &Tracer<'_>, camera_ray: &Ray, rng: &mut Rng, stats: &mu
     // Camera ray or the last bounce was a delta one: emission counts.
     let mut count_emission = true;
     for depth in 0..=effects.max_depth {
-        let hit = tracer.nearest(&ray, t_min, stats);
+        let hit = if depth == 0 {
+            camera_hit
+        } else {
+            tracer.nearest(&ray, t_min, stats)
+        };
         let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
         if let Some((_, le)) = tracer.lights.hit_area(&ray, t_min, t_hit) {
             if count_emission {

@@ -10,6 +10,10 @@
 //! mean of the samples (antialiasing). A sample whose value is not finite
 //! counts as black instead of poisoning the pixel.
 //!
+//! Camera rays go through the scene in batches: runs of up to
+//! [`Options::lanes`] pixels of a row, sample `i` of each at a time
+//! ([`Tracer::nearest_batch`]); the image is the same as one ray at a time.
+//!
 //! Each tile counts its rays in its own [`Stats`]; they are merged when the
 //! image is done, and the wall time and thread count are filled in.
 //!
@@ -24,10 +28,12 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use revolve::Ray;
+use revolve::nalgebra::{Point3, Vector3};
 
 use crate::camera::PinholeCamera;
 use crate::effects::Effects;
-use crate::geometry::World;
+use crate::geometry::{LANES, World};
 use crate::path;
 use crate::sampling::{self, Rng};
 use crate::scene::{Color, Integrator, Scene};
@@ -92,6 +98,11 @@ pub struct Options {
     pub progress: bool,
     /// The seed of every pixel's random numbers.
     pub seed: u64,
+    /// Camera rays traced together, in `1..=`[`LANES`] (clamped): a run of
+    /// up to that many pixels of a row, one sample of each at a time. 1
+    /// traces every camera ray alone with the single-ray query; the image is
+    /// the same.
+    pub lanes: usize,
 }
 
 impl Default for Options {
@@ -100,6 +111,7 @@ impl Default for Options {
             samples: None,
             progress: false,
             seed: 0x5eed,
+            lanes: LANES,
         }
     }
 }
@@ -170,6 +182,7 @@ pub fn render_world(
         ProgressBar::hidden()
     };
 
+    let (lanes, seed) = (options.lanes.clamp(1, LANES), options.seed);
     let started = Instant::now();
     let mut stats = Stats::default();
     // Tiles render in parallel a batch at a time and are copied into the
@@ -182,9 +195,9 @@ pub fn render_world(
                 let mut stats = Stats::default();
                 let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
                 for y in y0..y1 {
-                    for x in x0..x1 {
-                        let mut rng = Rng::for_pixel(options.seed, x, y);
-                        pixels.push(pixel(&tracer, &camera, x, y, &mut rng, &mut stats));
+                    for x in (x0..x1).step_by(lanes) {
+                        let run = (x, (x + lanes as u32).min(x1));
+                        pixel_run(&tracer, &camera, run, y, seed, &mut stats, &mut pixels);
                     }
                 }
                 bar.inc(1);
@@ -208,35 +221,57 @@ pub fn render_world(
     Ok((image, stats))
 }
 
-/// The colour of pixel `(x, y)`: the mean over its samples.
-fn pixel(
+/// The colours of pixels `x0..x1` (at most [`LANES`]) of row `y`, appended
+/// to `out`: each the mean over its samples. Sample `i` of every pixel goes
+/// through the scene in one batch ([`Tracer::nearest_batch`]; one pixel
+/// alone takes the single-ray query). Each pixel draws from its own
+/// generator in the same order as if it were traced alone, so the image does
+/// not depend on the batching.
+fn pixel_run(
     tracer: &Tracer<'_>,
     camera: &PinholeCamera,
-    x: u32,
+    (x0, x1): (u32, u32),
     y: u32,
-    rng: &mut Rng,
+    seed: u64,
     stats: &mut Stats,
-) -> Color {
+    out: &mut Vec<Color>,
+) {
+    let w = (x1 - x0).clamp(1, LANES as u32) as usize;
     let n = tracer.effects.samples.max(1);
-    let mut sum = Color::zeros();
+    let mut rngs: [Rng; LANES] =
+        std::array::from_fn(|j| Rng::for_pixel(seed, x0 + j.min(w - 1) as u32, y));
+    let mut sums = [Color::zeros(); LANES];
+    let mut rays = [Ray::new(Point3::origin(), Vector3::zeros()); LANES];
+    let mut hits = [None; LANES];
     for i in 0..n {
-        let (sx, sy) = if n == 1 {
-            (f64::from(x) + 0.5, f64::from(y) + 0.5)
+        for (j, (ray, rng)) in rays.iter_mut().zip(&mut rngs).take(w).enumerate() {
+            let x = f64::from(x0 + j as u32);
+            let (sx, sy) = if n == 1 {
+                (x + 0.5, f64::from(y) + 0.5)
+            } else {
+                let (a, b) = sampling::stratum(i, n, rng.next_2d());
+                (x + a, f64::from(y) + b)
+            };
+            *ray = camera.ray(sx, sy);
+        }
+        stats.rays.primary += w as u64;
+        if w == 1 {
+            hits[0] = tracer.nearest(&rays[0], 0.0, stats);
         } else {
-            let (a, b) = sampling::stratum(i, n, rng.next_2d());
-            (f64::from(x) + a, f64::from(y) + b)
-        };
-        let ray = camera.ray(sx, sy);
-        stats.rays.primary += 1;
-        let c = match tracer.effects.integrator {
-            Integrator::Whitted => whitted::trace(tracer, &ray, rng, stats),
-            Integrator::Path => path::radiance(tracer, &ray, rng, stats),
-        };
-        if c.iter().all(|v| v.is_finite()) {
-            sum += c;
-        } else {
-            stats.non_finite_samples += 1;
+            tracer.nearest_batch(&rays[..w], 0.0, &mut hits[..w], stats);
+        }
+        for j in 0..w {
+            let (ray, hit, rng) = (&rays[j], hits[j], &mut rngs[j]);
+            let c = match tracer.effects.integrator {
+                Integrator::Whitted => whitted::trace(tracer, ray, hit, rng, stats),
+                Integrator::Path => path::radiance(tracer, ray, hit, rng, stats),
+            };
+            if c.iter().all(|v| v.is_finite()) {
+                sums[j] += c;
+            } else {
+                stats.non_finite_samples += 1;
+            }
         }
     }
-    sum / f64::from(n)
+    out.extend(sums[..w].iter().map(|s| s / f64::from(n)));
 }

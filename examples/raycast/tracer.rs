@@ -99,6 +99,20 @@ impl<'a> Tracer<'a> {
             .intersect(ray, t_min, f64::INFINITY, &mut stats.intersect)
     }
 
+    /// The nearest hit of each of `rays` beyond `t_min`, into `hits`: the
+    /// same as [`Self::nearest`] for each, found together.
+    #[inline]
+    pub fn nearest_batch(
+        &self,
+        rays: &[Ray],
+        t_min: f64,
+        hits: &mut [Option<SurfaceHit>],
+        stats: &mut Stats,
+    ) {
+        self.world
+            .intersect_batch(rays, t_min, hits, &mut stats.intersect);
+    }
+
     /// A secondary ray from the surface point `p` along the unit `dir`,
     /// leaving by the side of the unit normal `n_side`. Trace it with
     /// `t_min = self.eps`.

@@ -37,6 +37,7 @@
 use revolve::Ray;
 use revolve::nalgebra::Vector3;
 
+use crate::geometry::SurfaceHit;
 use crate::optics;
 use crate::sampling::{self, Rng};
 use crate::scene::{Color, Material};
@@ -69,14 +70,21 @@ struct Branch {
     weight: f64,
 }
 
-/// The colour seen along the camera ray `ray` (unit direction).
-pub fn trace(tracer: &Tracer<'_>, ray: &Ray, rng: &mut Rng, stats: &mut Stats) -> Color {
+/// The colour seen along the camera ray `ray` (unit direction), whose
+/// nearest hit is `hit`.
+pub fn trace(
+    tracer: &Tracer<'_>,
+    ray: &Ray,
+    hit: Option<SurfaceHit>,
+    rng: &mut Rng,
+    stats: &mut Stats,
+) -> Color {
     let mut budget = MAX_SECONDARY_RAYS;
     let camera = Branch {
         depth: 0,
         weight: 1.0,
     };
-    trace_branch(tracer, ray, 0.0, camera, &mut budget, rng, stats)
+    shade(tracer, ray, hit, camera, &mut budget, rng, stats)
 }
 
 /// Takes one ray from the `budget`; false when it is spent.
@@ -100,8 +108,23 @@ fn trace_branch(
     rng: &mut Rng,
     stats: &mut Stats,
 ) -> Color {
+    let hit = tracer.nearest(ray, t_min, stats);
+    shade(tracer, ray, hit, branch, budget, rng, stats)
+}
+
+/// The colour seen along `ray` whose nearest hit is `hit` (the background
+/// for none), the rest as [`trace_branch`].
+fn shade(
+    tracer: &Tracer<'_>,
+    ray: &Ray,
+    hit: Option<SurfaceHit>,
+    branch: Branch,
+    budget: &mut u32,
+    rng: &mut Rng,
+    stats: &mut Stats,
+) -> Color {
     let Branch { depth, weight } = branch;
-    let Some(hit) = tracer.nearest(ray, t_min, stats) else {
+    let Some(hit) = hit else {
         return tracer.scene.background;
     };
     let effects = &tracer.effects;

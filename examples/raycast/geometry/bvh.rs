@@ -244,6 +244,94 @@ impl Bvh {
     }
 }
 
+/// A traversal that can be paused at every item: [`Walk::next`] yields the
+/// items [`Bvh::traverse`] would pass to its callback, in the same order,
+/// given the current `t_max` each time; so several rays can walk the tree
+/// side by side and have their items tested together. (`traverse` keeps its
+/// own loop: built on `Walk`, the single-ray query cost 6% more
+/// instructions, moving the walk's stack.)
+#[derive(Debug, Clone)]
+pub struct Walk {
+    // Two plain arrays (not an array of pairs): zeroing them is one bulk
+    // fill, not one store per padded pair.
+    stack_node: [u32; STACK],
+    stack_t: [f64; STACK],
+    sp: usize,
+    /// The node to enter next, if any (else pop the stack).
+    node: Option<usize>,
+    /// The items of the current leaf still to yield.
+    items: std::ops::Range<usize>,
+}
+
+impl Walk {
+    /// A walk of `bvh` for the ray: empty unless it enters the root box
+    /// within `[t_min, t_max]`.
+    #[inline]
+    pub fn new(bvh: &Bvh, ray: &BoxRay, t_min: f64, t_max: f64) -> Walk {
+        let enters = bvh
+            .nodes
+            .first()
+            .is_some_and(|root| root.enter(ray, t_min, t_max).is_some());
+        Walk {
+            stack_node: [0; STACK],
+            stack_t: [0.0; STACK],
+            sp: 0,
+            node: enters.then_some(0),
+            items: 0..0,
+        }
+    }
+
+    /// The next item to test, `t_max` being the nearest hit so far (the
+    /// walk skips subtrees beyond it); `None` when the walk is over. Pass
+    /// the same `bvh`, `ray` and `t_min` as to [`Walk::new`].
+    #[inline]
+    pub fn next(&mut self, bvh: &Bvh, ray: &BoxRay, t_min: f64, t_max: f64) -> Option<usize> {
+        loop {
+            if let Some(k) = self.items.next() {
+                return Some(k);
+            }
+            if let Some(node) = self.node {
+                let n = &bvh.nodes[node];
+                if n.count > 0 {
+                    let start = n.start as usize;
+                    self.items = start..start + n.count as usize;
+                    self.node = None;
+                    continue;
+                }
+                let (l, r) = (node + 1, n.start as usize);
+                let tl = bvh.nodes[l].enter(ray, t_min, t_max);
+                let tr = bvh.nodes[r].enter(ray, t_min, t_max);
+                self.node = match (tl, tr) {
+                    (Some(a), Some(b)) => {
+                        let (near, far, t_far) = if a <= b { (l, r, b) } else { (r, l, a) };
+                        self.stack_node[self.sp] = far as u32;
+                        self.stack_t[self.sp] = t_far;
+                        self.sp += 1;
+                        Some(near)
+                    }
+                    (Some(_), None) => Some(l),
+                    (None, Some(_)) => Some(r),
+                    (None, None) => None,
+                };
+                if self.node.is_some() {
+                    continue;
+                }
+            }
+            // Pop the next subtree that may still hold a nearer hit.
+            loop {
+                if self.sp == 0 {
+                    return None;
+                }
+                self.sp -= 1;
+                if self.stack_t[self.sp] <= t_max {
+                    self.node = Some(self.stack_node[self.sp] as usize);
+                    break;
+                }
+            }
+        }
+    }
+}
+
 /// Builds the subtree over `items` (stored from `offset` on) and returns its
 /// node index; children follow in depth-first order.
 fn build_node(

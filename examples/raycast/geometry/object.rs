@@ -9,10 +9,11 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use revolve::nalgebra::Matrix4;
+use revolve::nalgebra::{Matrix4, Point3, Vector3};
 use revolve::{Aabb, Ray};
 
 use super::IntersectStats;
+use super::batch::LANES;
 use super::mesh::MeshShape;
 use super::revolution::RevolutionShape;
 use super::shapes::{Annulus, BoxShape, LocalHit, Parallelogram, Plane, Sphere, Triangle};
@@ -143,6 +144,26 @@ impl Prim {
         }
     }
 
+    /// [`Self::intersect`] for each lane (at most [`LANES`]): `out[i]` for
+    /// `rays[i]` in `ranges[i]`; revolution bodies answer the lanes together.
+    #[inline]
+    pub fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        ranges: &[(f64, f64)],
+        out: &mut [Option<LocalHit>],
+        stats: &mut IntersectStats,
+    ) {
+        match self {
+            Prim::Revolution(r) => r.intersect_batch(rays, ranges, out, stats),
+            _ => {
+                for ((ray, &(t_min, t_max)), o) in rays.iter().zip(ranges).zip(out) {
+                    *o = self.intersect(ray, t_min, t_max, stats);
+                }
+            }
+        }
+    }
+
     /// The UV of a hit from [`intersect`](Self::intersect) (computed here,
     /// for the nearest hit only, by the shapes that defer it).
     pub fn uv(&self, hit: &LocalHit) -> (f64, f64) {
@@ -223,6 +244,29 @@ impl Placed {
             Some(f) => self
                 .prim
                 .intersect(&f.ray_to_local(ray), t_min, t_max, stats),
+        }
+    }
+
+    /// [`Self::intersect`] for each lane (at most [`LANES`]), the rays
+    /// mapped into the object frame together.
+    #[inline]
+    pub fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        ranges: &[(f64, f64)],
+        out: &mut [Option<LocalHit>],
+        stats: &mut IntersectStats,
+    ) {
+        match &self.frame {
+            None => self.prim.intersect_batch(rays, ranges, out, stats),
+            Some(f) => {
+                let n = rays.len().min(LANES);
+                let mut local = [Ray::new(Point3::origin(), Vector3::zeros()); LANES];
+                for (l, r) in local.iter_mut().zip(&rays[..n]) {
+                    *l = f.ray_to_local(r);
+                }
+                self.prim.intersect_batch(&local[..n], ranges, out, stats);
+            }
         }
     }
 

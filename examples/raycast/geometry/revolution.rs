@@ -36,6 +36,7 @@ use revolve::nalgebra::{Point3, Vector3};
 use revolve::{Aabb, Curve, Hit, Intersect, Ray, Revolution, Surface};
 
 use super::IntersectStats;
+use super::batch::LANES;
 use super::shapes::LocalHit;
 use crate::scene::RevolutionBody;
 
@@ -103,10 +104,40 @@ impl RevolutionShape {
         t_max: f64,
         stats: &mut IntersectStats,
     ) -> Option<LocalHit> {
-        let h = self.hit(ray, t_min, t_max, stats)?;
+        self.hit(ray, t_min, t_max, stats).map(|h| self.local(&h))
+    }
+
+    /// revolve's [`Intersect::intersect_batch`] over the lanes (at most
+    /// [`LANES`]): `out[i]` is what [`Self::intersect`] gives for `rays[i]`
+    /// in `ranges[i]`; counts one call per lane and times the batch.
+    pub fn intersect_batch(
+        &self,
+        rays: &[Ray],
+        ranges: &[(f64, f64)],
+        out: &mut [Option<LocalHit>],
+        stats: &mut IntersectStats,
+    ) {
+        let n = rays.len().min(ranges.len()).min(out.len()).min(LANES);
+        let mut hits = [None; LANES];
+        let start = Instant::now();
+        let (rays, ranges, hits) = (&rays[..n], &ranges[..n], &mut hits[..n]);
+        match &*self.body {
+            RevolutionBody::Bezier(r) => r.intersect_batch(rays, ranges, hits),
+            RevolutionBody::BSpline(r) => r.intersect_batch(rays, ranges, hits),
+            RevolutionBody::Nurbs(r) => r.intersect_batch(rays, ranges, hits),
+        }
+        stats.revolution_calls += n as u64;
+        stats.revolution_nanos += start.elapsed().as_nanos() as u64;
+        for (o, h) in out.iter_mut().zip(hits.iter()) {
+            *o = h.as_ref().map(|h| self.local(h));
+        }
+    }
+
+    /// revolve's hit with the normal oriented and the UV scaled to `[0, 1]²`.
+    fn local(&self, h: &Hit) -> LocalHit {
         let n = h.normal.into_inner();
         let (u0, u1) = self.domain;
-        Some(LocalHit {
+        LocalHit {
             t: h.t,
             point: h.point,
             normal: if self.flip { -n } else { n },
@@ -114,7 +145,7 @@ impl RevolutionShape {
                 ((h.uv.0 - u0) / (u1 - u0)).clamp(0.0, 1.0),
                 (h.uv.1.rem_euclid(TAU) / TAU).clamp(0.0, 1.0),
             ),
-        })
+        }
     }
 }
 
