@@ -22,7 +22,7 @@ use crate::mesh_baseline::MeshBaseline;
 use crate::model::{Method, Row};
 use crate::patch_reference::PatchReference;
 use crate::patch_shapes;
-use crate::study::{Cases, Newton, Plan, built, measure};
+use crate::study::{Cases, Newton, Plan, built, measured_row};
 use revolve::{Aabb, BezierPatches, BezierSurface, Intersect, NewtonIntersector, Ray, Tolerance};
 
 /// Meshes predicted to have more triangles are not built (memory on a
@@ -147,16 +147,7 @@ pub fn run_patch_shape(
 ) -> Vec<Row> {
     let mut rows = Vec::new();
     let mut record = |method: &mut dyn Method, seconds: f64, bytes: usize| {
-        let (errors, rate) = measure(method, cases, plan.repeats);
-        let row = Row {
-            shape: shape.name,
-            series: method.series(),
-            knob: method.knob(),
-            errors,
-            rays_per_second: rate,
-            memory_bytes: bytes,
-            build_seconds: seconds,
-        };
+        let row = measured_row(shape.name, method, cases, plan.repeats, (seconds, bytes));
         tick(&row);
         rows.push(row);
     };

@@ -358,6 +358,27 @@ pub fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
     (m, start.elapsed().as_secs_f64(), bytes)
 }
 
+/// The row of `method` on `shape`'s `cases`, measured `repeats` times;
+/// `(seconds, bytes)` is what it took to build.
+pub fn measured_row(
+    shape: &'static str,
+    method: &mut dyn Method,
+    cases: &Cases,
+    repeats: usize,
+    (seconds, bytes): (f64, usize),
+) -> Row {
+    let (errors, rate) = measure(method, cases, repeats);
+    Row {
+        shape,
+        series: method.series(),
+        knob: method.knob(),
+        errors,
+        rays_per_second: rate,
+        memory_bytes: bytes,
+        build_seconds: seconds,
+    }
+}
+
 /// Every method and setting of `plan` on one shape; `tick` after each row.
 pub fn run_shape<C: Curve<2> + Clone>(
     shape: &Shape<C>,
@@ -367,16 +388,7 @@ pub fn run_shape<C: Curve<2> + Clone>(
 ) -> Vec<Row> {
     let mut rows = Vec::new();
     let mut record = |method: &mut dyn Method, seconds: f64, bytes: usize| {
-        let (errors, rate) = measure(method, cases, plan.repeats);
-        let row = Row {
-            shape: shape.name,
-            series: method.series(),
-            knob: method.knob(),
-            errors,
-            rays_per_second: rate,
-            memory_bytes: bytes,
-            build_seconds: seconds,
-        };
+        let row = measured_row(shape.name, method, cases, plan.repeats, (seconds, bytes));
         tick(&row);
         rows.push(row);
     };
