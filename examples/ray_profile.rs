@@ -9,11 +9,13 @@
 //! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
 //! ```
 //!
-//! `ray_profile [glass|vase|cylinder|sphere|torus|teapot|folded] [N] [--perpendicular] [--report]`:
+//! `ray_profile [glass|vase|cylinder|sphere|torus|teapot|folded] [N] [--perpendicular] [--report] [--batch]`:
 //! the shape (default glass; the sphere and the torus are rational revolutions
 //! of NURBS arcs; the teapot and the folded bicubic are models of Bézier
 //! patches), the number of rays (default 100 000), rays perpendicular
-//! to the axis instead of in any direction, and the per-ray report.
+//! to the axis instead of in any direction, the per-ray report, and rays sent
+//! through `Intersect::intersect_batch` eight at a time instead of one by
+//! one.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -63,7 +65,7 @@ fn torus() -> Result<Shape, String> {
 
 fn main() -> Result<(), String> {
     let mut shape = Shape::Glass(Revolution::new(common::wine_glass()));
-    let (mut n, mut perpendicular, mut report) = (100_000_usize, false, false);
+    let (mut n, mut perpendicular, mut report, mut batch) = (100_000_usize, false, false, false);
     for arg in std::env::args().skip(1) {
         match arg.as_str() {
             "glass" => shape = Shape::Glass(Revolution::new(common::wine_glass())),
@@ -75,10 +77,11 @@ fn main() -> Result<(), String> {
             "folded" => shape = patches(false)?,
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
+            "--batch" => batch = true,
             count => {
                 n = count
                     .parse()
-                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, teapot, folded, a ray count, --perpendicular or --report"))?
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, teapot, folded, a ray count, --perpendicular, --report or --batch"))?
             }
         }
     }
@@ -104,6 +107,29 @@ fn main() -> Result<(), String> {
         })
         .collect();
     let mut hits = 0_usize;
+    if batch {
+        if report {
+            return Err("--report and --batch do not go together".into());
+        }
+        let target: &dyn Intersect = match &shape {
+            Shape::Glass(s) => s,
+            Shape::Bezier(s) => s,
+            Shape::Nurbs(s) => s,
+            Shape::Patches(s) => s,
+        };
+        let ranges = [(0.0, f64::INFINITY); 8];
+        let mut out = [None; 8];
+        let mut done = 0;
+        while done < n {
+            let start = done % rays.len();
+            let lanes = 8.min(n - done).min(rays.len() - start);
+            target.intersect_batch(&rays[start..start + lanes], &ranges, &mut out[..lanes]);
+            hits += out[..lanes].iter().filter(|h| h.is_some()).count();
+            done += lanes;
+        }
+        println!("hits {hits} of {n} rays (batches of 8)");
+        return Ok(());
+    }
     // Spans entered, spans solved, roots, candidates, Newton iterations.
     let mut totals = [0_u64; 5];
     for i in 0..n {
