@@ -40,9 +40,10 @@
 //! is not on the surface to the tolerance.
 
 use super::patch_tree::{PatchTree, Slab};
+use crate::curve::unit_direction;
 use crate::surface::tensor_patch::{Patch, tensor_jet};
-use crate::{Ray, Tolerance};
-use nalgebra::Vector3;
+use crate::{Hit, Ray, Tolerance};
+use nalgebra::{Point3, Unit, Vector3};
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
 /// handed to Newton's method.
@@ -69,6 +70,26 @@ pub(crate) struct PatchHit {
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) v: f64,
+}
+
+impl PatchHit {
+    /// The crate's hit for `ray`, with the surface's `point` and `normal`
+    /// at `(u, v)`; where the surface has no tangent plane the normal faces
+    /// the ray.
+    pub(crate) fn to_hit(
+        self,
+        ray: &Ray,
+        point: Point3<f64>,
+        normal: Option<Unit<Vector3<f64>>>,
+    ) -> Option<Hit> {
+        let normal = normal.or_else(|| unit_direction(-ray.dir))?;
+        Some(Hit {
+            t: self.t,
+            point,
+            normal,
+            uv: (self.u, self.v),
+        })
+    }
 }
 
 /// One box of the search: its parameter ranges within the patch and how

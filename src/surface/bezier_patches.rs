@@ -8,7 +8,6 @@ use crate::curve::{Homogeneous, elevate_bezier};
 use crate::ray::patch::{PatchSet, intersect};
 use crate::ray::patch_tree::PatchTree;
 use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
-use nalgebra::Unit;
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a
 /// [`BezierSurface`] with its own `(u, v) ∈ [0, 1]²`.
@@ -127,15 +126,11 @@ impl BezierPatches {
         };
         let found = intersect(set, ray, t_min, t_max, &self.tolerance)?;
         let surface = &self.surfaces[found.patch];
-        let normal = surface
-            .normal(found.u, found.v)
-            .or_else(|| Unit::try_new(-ray.dir / ray.dir.amax(), 0.0))?;
-        let hit = Hit {
-            t: found.t,
-            point: surface.eval(found.u, found.v),
-            normal,
-            uv: (found.u, found.v),
-        };
+        let hit = found.to_hit(
+            ray,
+            surface.eval(found.u, found.v),
+            surface.normal(found.u, found.v),
+        )?;
         Some((found.patch, hit))
     }
 

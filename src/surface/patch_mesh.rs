@@ -341,7 +341,7 @@ fn fill_normals(
     for (i, n) in surface.iter().enumerate() {
         out.push(n.unwrap_or_else(|| {
             sums.get(&(i as u32))
-                .and_then(|s| super::tensor_patch::unit(*s))
+                .and_then(|s| crate::curve::unit_direction(*s))
                 .unwrap_or_else(Vector3::z_axis)
         }));
     }

@@ -10,7 +10,7 @@
 //! CAGD*, ch. 16–17), on stack scratch space.
 
 use crate::bernstein::{self, Coefficient, lerp};
-use crate::curve::{Homogeneous, validate_points, validate_weights};
+use crate::curve::{Homogeneous, unit_direction, validate_points, validate_weights};
 use crate::ray::patch::{PatchSet, intersect};
 use crate::ray::patch_tree::PatchTree;
 use crate::scratch::with_scratch;
@@ -311,16 +311,11 @@ impl PatchTable {
     /// no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
-        let point = self.eval(found.u, found.v);
-        let normal = self
-            .normal(found.u, found.v)
-            .or_else(|| Unit::try_new(-ray.dir / ray.dir.amax(), 0.0))?;
-        Some(Hit {
-            t: found.t,
-            point,
-            normal,
-            uv: (found.u, found.v),
-        })
+        found.to_hit(
+            ray,
+            self.eval(found.u, found.v),
+            self.normal(found.u, found.v),
+        )
     }
 
     /// What the ray–patch search runs over.
@@ -359,7 +354,7 @@ impl PatchTable {
             / (du.1 - du.0).min(dv.1 - dv.0);
         let negligible = (1e-7 * typical) * (1e-7 * typical);
         if n.norm() > negligible {
-            return unit(n);
+            return unit_direction(n);
         }
         let d = self.jet(u, v, 2);
         // N(u + h·du, v + h·dv) = N + h·N₁ + O(h²) toward the domain's
@@ -370,7 +365,7 @@ impl PatchTable {
             + (d[1][1].cross(&sv) + su.cross(&d[0][2])) * dir_v;
         let wide = (du.1 - du.0).max(dv.1 - dv.0);
         if n1.norm() * wide > negligible {
-            let n1 = unit(n1)?;
+            let n1 = unit_direction(n1)?;
             // At a collapsed edge the limit is a tangent plane only if every
             // direction leaving the edge lies in it (else a cone point).
             return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
@@ -391,7 +386,7 @@ impl PatchTable {
             if !resolved {
                 break;
             }
-            let Some(n) = unit(n) else {
+            let Some(n) = unit_direction(n) else {
                 break;
             };
             if let Some(previous) = last {
@@ -500,17 +495,6 @@ impl PatchTable {
         let pad = 16.0 * (p + q + 2) as f64 * f64::EPSILON * magnitude;
         boxed.expand(pad)
     }
-}
-
-/// `v` normalized, scaled first by its largest component so that neither
-/// huge nor tiny components overflow or underflow; `None` for a zero or
-/// non-finite vector.
-pub(crate) fn unit(v: Vector3<f64>) -> Option<Unit<Vector3<f64>>> {
-    let m = v.amax();
-    if !(m > 0.0 && m.is_finite()) {
-        return None;
-    }
-    Unit::try_new(v / m, 0.0)
 }
 
 /// Replaces the Bernstein coefficients `c` on `[0, 1]` by those of the same
