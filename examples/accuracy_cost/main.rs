@@ -10,8 +10,11 @@
 //! cubic B-spline), and two rational revolutions, a NURBS sphere and a
 //! NURBS torus (quarter arcs of `Nurbs::arc` and `Nurbs::circle`), it
 //! measures
-//! - revolve's exact intersector at tolerances `1e-3 … 1e-14`, and the same
-//!   profiles given as own curves (no Bézier spans: approximation + Newton);
+//! - revolve's exact intersector at tolerances `1e-3 … 1e-14`, one ray a
+//!   call and through `Intersect::intersect_batch` in batches of 8 rays
+//!   ([`batch`]; its hits must equal the single calls' bit for bit, or the
+//!   run fails after writing its report), and the same profiles given as
+//!   own curves (no Bézier spans: approximation + Newton);
 //! - revolve's generic Newton intersector at several patch-tree depths and
 //!   tolerances;
 //! - the method the course teaches ([`course`]): Newton on `(t, u, v)` from
@@ -42,6 +45,7 @@
 //! `out/accuracy_cost`).
 //! `--quick` runs every code path at a tiny size (CI).
 
+mod batch;
 mod closed_form;
 #[path = "../../tests/common/mod.rs"]
 mod common;
@@ -136,7 +140,15 @@ fn run(args: &Args) -> std::io::Result<()> {
         println!("wrote {}", f.display());
     }
     println!("in {:.1} s", start.elapsed().as_secs_f64());
-    Ok(())
+    let differences = results.batch_differences();
+    if differences.is_empty() {
+        Ok(())
+    } else {
+        Err(std::io::Error::other(format!(
+            "the batch path's hits differ from the single path's: {}",
+            differences.join("; ")
+        )))
+    }
 }
 
 #[cfg(test)]

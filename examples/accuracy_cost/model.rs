@@ -13,6 +13,22 @@ pub trait Method {
     fn knob(&self) -> String;
     /// The `t` of the nearest hit with `t_min < t < t_max`, or `None`.
     fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64>;
+    /// [`nearest`](Self::nearest) for every ray: `answers[i]` for
+    /// `rays[i]` (the common prefix of the two slices). How the study casts
+    /// a ray set, both for the answers and timed; the default casts one ray
+    /// at a time, a batch method overrides it.
+    fn nearest_all(&mut self, rays: &[Ray], t_min: f64, t_max: f64, answers: &mut [Option<f64>]) {
+        for (ray, answer) in rays.iter().zip(answers) {
+            *answer = self.nearest(ray, t_min, t_max);
+        }
+    }
+    /// For a method that casts through `Intersect::intersect_batch`: how
+    /// many of `rays` get a hit that differs in any bit (`t`, point, normal,
+    /// `u`, `v`, or hit against miss) from the single-ray `intersect` of the
+    /// same object. `None` for every other method.
+    fn batch_mismatches(&self, _rays: &[Ray], _t_min: f64, _t_max: f64) -> Option<usize> {
+        None
+    }
 }
 
 /// Error figures of one method on one ray set, against the reference.
@@ -56,4 +72,7 @@ pub struct Row {
     pub memory_bytes: usize,
     /// Seconds to build the per-surface data.
     pub build_seconds: f64,
+    /// For a batch row: rays whose batch hit differs from the single
+    /// path's in any bit ([`Method::batch_mismatches`]); `None` otherwise.
+    pub batch_mismatches: Option<usize>,
 }

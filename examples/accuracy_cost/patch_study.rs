@@ -4,7 +4,9 @@
 //!
 //! Methods, on the same rays as for the revolutions:
 //! - revolve's certified patch intersector (`Intersect` on
-//!   [`BezierSurface`]) at the plan's exact tolerances (`with_tolerance`);
+//!   [`BezierSurface`]) at the plan's exact tolerances (`with_tolerance`),
+//!   one ray a call and in batches of 8 (`intersect_batch`,
+//!   [`crate::batch`]);
 //! - [`NewtonIntersector`] at the plan's depths and tolerances;
 //! - the course method ([`CourseNewton`]) with `u₀`, `v₀` uniform;
 //! - the patches tessellated by revolve (`tessellate`, certified deviation,
@@ -17,6 +19,7 @@
 //! loop over its patches, each behind a test of its box ([`PatchLoop`]);
 //! the meshes are one `TriMesh` of all patches.
 
+use crate::batch::{Single, record_single_and_batched};
 use crate::course::CourseNewton;
 use crate::mesh_baseline::MeshBaseline;
 use crate::model::{Method, Row};
@@ -92,6 +95,13 @@ impl<M: Intersect> Method for Certified<M> {
     }
 }
 
+impl<M: Intersect> Single for Certified<M> {
+    type Model = M;
+    fn model(&self) -> &M {
+        &self.model
+    }
+}
+
 /// One method per patch, each tried where the ray meets that patch's box
 /// (searching only up to the nearest hit so far); the nearest hit wins. With
 /// one patch, the method alone.
@@ -156,19 +166,19 @@ pub fn run_patch_shape(
         let tol = Tolerance::relative(tolerance);
         let knob = format!("tol {tolerance:.0e}");
         if let [patch] = patches.as_slice() {
-            let (mut m, s, b) = built(|| Certified {
+            let certified = || Certified {
                 model: patch.clone().with_tolerance(tol),
                 knob: knob.clone(),
-            });
-            record(&mut m, s, b);
+            };
+            record_single_and_batched(certified, &mut record);
         } else {
-            let (mut m, s, b) = built(|| Certified {
+            let certified = || Certified {
                 model: BezierPatches::new(patches.clone())
                     .expect("a non-empty model")
                     .with_tolerance(tol),
                 knob: format!("{knob}, BVH over {} patches", patches.len()),
-            });
-            record(&mut m, s, b);
+            };
+            record_single_and_batched(certified, &mut record);
         }
     }
     for &depth in &plan.newton_depths {
@@ -335,14 +345,23 @@ mod tests {
         let cases = reference_cases(&shape.reference(), &random_rays(&b, 60, 9), b.scale());
         let rows = run_patch_shape(&shape, &cases, &plan, &mut |_| {});
         assert_eq!(rows.len(), plan.patch_rows());
-        let newton = plan.exact_tolerances.len();
+        let newton = 2 * plan.exact_tolerances.len();
         assert!(rows[newton].knob.contains("loop over 32 boxes"));
-        for certified in &rows[..newton] {
-            assert_eq!(certified.series, "revolve certified");
-            assert!(certified.knob.contains("BVH over 32 patches"));
-            assert_eq!(certified.errors.miss_rate, 0.0);
-            assert_eq!(certified.errors.false_hit_rate, 0.0);
-            assert_eq!(certified.errors.far_hit_rate, 0.0);
+        for pair in rows[..newton].chunks(2) {
+            let (single, batched) = (&pair[0], &pair[1]);
+            assert_eq!(single.series, "revolve certified");
+            assert_eq!(batched.series, "revolve certified, batches of 8");
+            assert_eq!(single.batch_mismatches, None);
+            assert_eq!(batched.batch_mismatches, Some(0));
+            // The same answers, so the same error figures.
+            assert_eq!(batched.errors, single.errors);
+            assert_eq!(batched.knob, single.knob);
+            for certified in pair {
+                assert!(certified.knob.contains("BVH over 32 patches"));
+                assert_eq!(certified.errors.miss_rate, 0.0);
+                assert_eq!(certified.errors.false_hit_rate, 0.0);
+                assert_eq!(certified.errors.far_hit_rate, 0.0);
+            }
         }
         let mesh = rows.last().unwrap();
         assert_eq!(mesh.series, "parry TriMesh");

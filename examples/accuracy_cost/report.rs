@@ -50,6 +50,22 @@ impl Results {
     pub fn intersection_markdown(&self) -> String {
         table::intersection_table(&self.rows)
     }
+
+    /// The batch rows whose hits differ from their single path's in any
+    /// bit, as `"shape, method, setting: n of N rays"` (empty when all
+    /// agree).
+    pub fn batch_differences(&self) -> Vec<String> {
+        self.rows
+            .iter()
+            .filter_map(|r| match r.batch_mismatches {
+                Some(n) if n > 0 => Some(format!(
+                    "{}, {}, {}: {n} of {} rays",
+                    r.shape, r.series, r.knob, r.errors.rays
+                )),
+                _ => None,
+            })
+            .collect()
+    }
 }
 
 /// Runs the intersection study on every shape (the vase, the wine glass,
@@ -246,12 +262,29 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
             s.name, s.rays, s.hits, s.ambiguous, s.reference_seconds
         );
     }
+    let batch_rows = results
+        .rows
+        .iter()
+        .filter(|r| r.batch_mismatches.is_some())
+        .count();
+    let differences = results.batch_differences();
+    let agreement = if differences.is_empty() {
+        format!("equal on every ray of all {batch_rows} batch rows")
+    } else {
+        format!("**DIFFERENT** (the run fails): {}", differences.join("; "))
+    };
     let _ = writeln!(
         md,
         "\n## Intersection\n\nA far hit is one farther than {:.0e} of the object's size \
          from the exact nearest hit: another root, a near miss accepted within a loose \
-         tolerance, or a grazing hit on a coarse mesh.\n",
-        crate::model::FAR_HIT
+         tolerance, or a grazing hit on a coarse mesh. A method named \"…, batches of {}\" \
+         is the row above it called through `Intersect::intersect_batch` on {} consecutive \
+         rays of the set at a time (the last batch shorter), built and measured the same \
+         way; its hits (t, point, normal, u, v) are compared with the single calls' bit \
+         for bit: {agreement}.\n",
+        crate::model::FAR_HIT,
+        crate::batch::BATCH,
+        crate::batch::BATCH,
     );
     let of_kind = |patches: bool| -> Vec<Row> {
         let names: Vec<&str> = results
@@ -320,6 +353,32 @@ mod tests {
         for s in &results.shapes {
             assert_eq!(s.rays + s.ambiguous, plan.rays, "{}", s.name);
         }
+        // Every exact or certified row is followed by its batch row, with
+        // the same hits, so the same error figures.
+        let mut batch_rows = 0;
+        for pair in results.rows.windows(2) {
+            let (single, batched) = (&pair[0], &pair[1]);
+            if single.series.ends_with(", batches of 8") {
+                continue;
+            }
+            if !matches!(
+                single.series.as_str(),
+                "revolve exact" | "revolve certified"
+            ) {
+                assert_eq!(single.batch_mismatches, None, "{}", single.series);
+                continue;
+            }
+            batch_rows += 1;
+            assert_eq!(batched.series, format!("{}, batches of 8", single.series));
+            assert_eq!((batched.shape, &batched.knob), (single.shape, &single.knob));
+            assert_eq!(batched.batch_mismatches, Some(0), "{}", single.shape);
+            assert_eq!(batched.errors, single.errors, "{}", single.shape);
+        }
+        assert_eq!(
+            batch_rows,
+            (SHAPES + PATCH_SHAPES) * plan.exact_tolerances.len()
+        );
+        assert!(results.batch_differences().is_empty());
         // The exact intersector at full precision: nothing missed.
         for row in results.rows.iter().filter(|r| r.knob == "tol 1e-14") {
             assert_eq!(row.errors.miss_rate, 0.0, "{}", row.shape);
@@ -341,6 +400,11 @@ mod tests {
         assert_eq!(files.len(), 6);
         let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
         assert!(md.contains("| vase | revolve exact | tol 1e-3 |"));
+        assert!(md.contains("| vase | revolve exact, batches of 8 | tol 1e-3 |"));
+        assert!(md.contains("| teapot | revolve certified, batches of 8 | tol 1e-14, BVH"));
+        assert!(md.contains(&format!(
+            "equal on every ray of all {batch_rows} batch rows"
+        )));
         assert!(md.contains("| wine glass | parry TriMesh |"));
         assert!(md.contains("| NURBS sphere | revolve exact | tol 1e-14 |"));
         assert!(md.contains("| NURBS torus | parry TriMesh |"));
@@ -367,6 +431,7 @@ mod tests {
             rays_per_second: rate,
             memory_bytes: 0,
             build_seconds: 0.0,
+            batch_mismatches: None,
         };
         let rows = [
             row("exact", 1e6, 0.0),

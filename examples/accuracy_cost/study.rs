@@ -8,8 +8,12 @@
 //! torus) the closed forms solved exactly ([`ClosedForm`]); rays a
 //! reference cannot certify (tangent contacts) are left out and counted. Every method then traces the same rays twice: once for
 //! its answers (errors against the reference), then `repeats` timed passes on
-//! one thread, of which the median rate is reported.
+//! one thread, of which the median rate is reported. The exact intersector
+//! has two rows per tolerance: one ray a call, and the same object through
+//! `intersect_batch`, 8 consecutive rays a call ([`crate::batch`]), whose
+//! hits are checked against the single calls' bit for bit.
 
+use crate::batch::{Single, record_single_and_batched};
 use crate::closed_form::ClosedForm;
 use crate::course::CourseNewton;
 use crate::memory;
@@ -77,19 +81,21 @@ impl Plan {
         }
     }
 
-    /// Rows one patch shape produces: the certified intersector at its one
-    /// (default) tolerance, then as for a revolution without the tolerance
-    /// sweeps ([`crate::patch_study`]).
+    /// Rows one patch shape produces: the certified intersector at each
+    /// exact tolerance, single rays and in batches, then as for a revolution
+    /// without the own-curve sweep ([`crate::patch_study`]).
     pub fn patch_rows(&self) -> usize {
-        self.exact_tolerances.len()
+        2 * self.exact_tolerances.len()
             + self.newton_depths.len() * self.newton_tolerances.len()
             + self.course.len()
             + self.mesh_tolerances.len()
     }
 
-    /// Rows one shape of revolution produces (for the progress bar).
+    /// Rows one shape of revolution produces (for the progress bar): the
+    /// exact intersector in single rays and in batches, and the own curve,
+    /// at each exact tolerance; then Newton, the course method, the meshes.
     pub fn rows(&self) -> usize {
-        2 * self.exact_tolerances.len()
+        3 * self.exact_tolerances.len()
             + self.newton_depths.len() * self.newton_tolerances.len()
             + self.course.len()
             + self.mesh_tolerances.len()
@@ -169,6 +175,13 @@ pub struct Cases {
     pub ambiguous: usize,
     /// The object's scale: errors are `|t − t_ref| / scale`.
     pub scale: f64,
+}
+
+impl Cases {
+    /// The rays, in order.
+    pub fn rays(&self) -> Vec<Ray> {
+        self.cases.iter().map(|c| c.ray).collect()
+    }
 }
 
 /// `count` random rays through `bounds` (unit directions, `d_y ≠ 0`),
@@ -257,22 +270,20 @@ pub fn median_sorted(v: &[f64]) -> f64 {
     }
 }
 
-/// Traces every case once for the answers, then `repeats` timed passes:
-/// the error figures and the median rays per second.
+/// Casts every case's ray once for the answers, then `repeats` timed
+/// passes, each through the method's [`Method::nearest_all`]: the error
+/// figures and the median rays per second.
 pub fn measure(method: &mut dyn Method, cases: &Cases, repeats: usize) -> (ErrorStats, f64) {
-    let answers: Vec<Option<f64>> = cases
-        .cases
-        .iter()
-        .map(|c| method.nearest(&c.ray, 0.0, T_MAX))
-        .collect();
+    let rays = cases.rays();
+    let mut answers = vec![None; rays.len()];
+    method.nearest_all(&rays, 0.0, T_MAX, &mut answers);
     let stats = error_stats(cases, &answers);
     let mut rates: Vec<f64> = (0..repeats.max(1))
         .map(|_| {
             let start = Instant::now();
-            for c in &cases.cases {
-                black_box(method.nearest(black_box(&c.ray), 0.0, T_MAX));
-            }
-            cases.cases.len() as f64 / start.elapsed().as_secs_f64().max(1e-12)
+            method.nearest_all(black_box(&rays), 0.0, T_MAX, &mut answers);
+            black_box(&answers);
+            rays.len() as f64 / start.elapsed().as_secs_f64().max(1e-12)
         })
         .collect();
     rates.sort_by(f64::total_cmp);
@@ -294,6 +305,13 @@ impl<C: Curve<2>> Method for Exact<C> {
     }
     fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
         self.surface.intersect(ray, t_min, t_max).map(|h| h.t)
+    }
+}
+
+impl<C: Curve<2>> Single for Exact<C> {
+    type Model = Revolution<C>;
+    fn model(&self) -> &Revolution<C> {
+        &self.surface
     }
 }
 
@@ -359,7 +377,8 @@ pub fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
 }
 
 /// The row of `method` on `shape`'s `cases`, measured `repeats` times;
-/// `(seconds, bytes)` is what it took to build.
+/// `(seconds, bytes)` is what it took to build. A batch method's hits are
+/// also compared with its single path's ([`Method::batch_mismatches`]).
 pub fn measured_row(
     shape: &'static str,
     method: &mut dyn Method,
@@ -368,6 +387,7 @@ pub fn measured_row(
     (seconds, bytes): (f64, usize),
 ) -> Row {
     let (errors, rate) = measure(method, cases, repeats);
+    let batch_mismatches = method.batch_mismatches(&cases.rays(), 0.0, T_MAX);
     Row {
         shape,
         series: method.series(),
@@ -376,6 +396,7 @@ pub fn measured_row(
         rays_per_second: rate,
         memory_bytes: bytes,
         build_seconds: seconds,
+        batch_mismatches,
     }
 }
 
@@ -393,12 +414,12 @@ pub fn run_shape<C: Curve<2> + Clone>(
         rows.push(row);
     };
     for &tolerance in &plan.exact_tolerances {
-        let (mut m, s, b) = built(|| Exact {
+        let exact = || Exact {
             surface: Revolution::new(shape.profile.clone())
                 .with_tolerance(Tolerance::relative(tolerance)),
             tolerance,
-        });
-        record(&mut m, s, b);
+        };
+        record_single_and_batched(exact, &mut record);
     }
     for &tolerance in &plan.exact_tolerances {
         let (mut m, s, b) = built(|| Approximated {

@@ -215,6 +215,7 @@ mod tests {
             rays_per_second: 1_234_567.0,
             memory_bytes: 12_595,
             build_seconds: 4.56e-5,
+            batch_mismatches: None,
         }
     }
 
