@@ -418,6 +418,46 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// A batch row that differs from its single path is named, with its
+    /// count, in the report (and by `main`, which then fails).
+    #[test]
+    fn batch_differences_are_reported() {
+        let row = |series: &str, mismatches: Option<usize>| Row {
+            shape: "vase",
+            series: series.to_string(),
+            knob: "tol 1e-6".to_string(),
+            errors: crate::model::ErrorStats {
+                rays: 2000,
+                ..Default::default()
+            },
+            rays_per_second: 1e6,
+            memory_bytes: 0,
+            build_seconds: 0.0,
+            batch_mismatches: mismatches,
+        };
+        let mut results = Results {
+            shapes: Vec::new(),
+            rows: vec![
+                row("revolve exact", None),
+                row("revolve exact, batches of 8", Some(0)),
+            ],
+            curves: Vec::new(),
+        };
+        assert!(results.batch_differences().is_empty());
+        let md = markdown(&results, &Plan::quick());
+        assert!(md.contains("bit for bit: equal on every ray of all 1 batch rows."));
+        results.rows[1].batch_mismatches = Some(3);
+        assert_eq!(
+            results.batch_differences(),
+            ["vase, revolve exact, batches of 8, tol 1e-6: 3 of 2000 rays"]
+        );
+        let md = markdown(&results, &Plan::quick());
+        assert!(md.contains(
+            "bit for bit: **DIFFERENT** (the run fails): vase, revolve exact, batches of 8, \
+             tol 1e-6: 3 of 2000 rays."
+        ));
+    }
+
     #[test]
     fn series_group_rows_by_method_and_floor_zero_errors() {
         let row = |series: &str, rate: f64, median: f64| Row {
