@@ -316,7 +316,8 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
          and its `t` lies in an interval about 5e-14 of the object's size wide (at most \
          1e-12, checked by its tests), the floor of the errors measured against it. \
          revolve's certified \
-         patch intersector has no tolerance knob: one row at its default; it ray-casts \
+         patch intersector runs at each tolerance of the sweep (`with_tolerance`: how far \
+         a near miss may be accepted; every hit is polished to full precision); it ray-casts \
          the teapot as a `BezierPatches` (a hierarchy over the patches' boxes), Newton \
          and the course method as a loop over its 32 patches, each behind a test of its \
          box. The meshes are revolve's `tessellate` (a uniform \
