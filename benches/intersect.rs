@@ -555,7 +555,11 @@ fn bench_patches(c: &mut Criterion) {
         } else {
             ("", "")
         };
-        let rays = box_rays(&certified.bounds(), false, 9);
+        // Through the box of the control points (not the search's own,
+        // tighter box), so that the rays do not depend on how the search
+        // cuts the patches.
+        let net_box = Aabb::from_points(patches.iter().flat_map(|p| p.points().iter().flatten()));
+        let rays = box_rays(&net_box, false, 9);
         let newton: Vec<(u32, PatchParts<NewtonIntersector<&BezierSurface>>)> = NEWTON_DEPTHS
             .iter()
             .map(|&depth| {

@@ -22,7 +22,7 @@ mod common;
 
 use common::Rng;
 use revolve::nalgebra::{Point2, Vector3};
-use revolve::{BSpline, Bezier, BezierPatches, Intersect, Nurbs, Ray, Revolution};
+use revolve::{Aabb, BSpline, Bezier, BezierPatches, Intersect, Nurbs, Ray, Revolution};
 
 /// One of the profiled shapes.
 enum Shape {
@@ -89,7 +89,12 @@ fn main() -> Result<(), String> {
         Shape::Glass(s) => s.bounds(),
         Shape::Bezier(s) => s.bounds(),
         Shape::Nurbs(s) => s.bounds(),
-        Shape::Patches(s) => s.bounds(),
+        // The box of the control points (not the search's, which is
+        // tighter), so that the rays do not depend on how the search cuts
+        // the patches.
+        Shape::Patches(s) => {
+            Aabb::from_points(s.patches().iter().flat_map(|p| p.points().iter().flatten()))
+        }
     };
     let mut rng = Rng(7);
     let radius = 2.0 * bounds.extent().norm();

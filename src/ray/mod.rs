@@ -11,6 +11,7 @@ mod meridian_cells;
 mod meridian_newton;
 pub mod newton;
 pub(crate) mod patch;
+pub(crate) mod patch_pieces;
 pub(crate) mod patch_tree;
 pub(crate) mod profile_refine;
 pub(crate) mod revolution;

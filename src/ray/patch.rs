@@ -29,8 +29,10 @@
 //! corners), and the point is a hit if it lands in the box on the surface
 //! within the tolerance; a box below [`SMALL`] on both sides is handed to
 //! Newton's method without that proof.
-//! The patches are visited nearest first through their hierarchy
-//! ([`PatchTree`]) and the search stops at the best hit so far.
+//! The patches, cut once into nearly bilinear pieces
+//! ([`SearchPieces`](super::patch_pieces::SearchPieces)), are visited
+//! nearest first through their hierarchy ([`PatchTree`]) and the search
+//! stops at the best hit so far.
 //!
 //! No root is discarded: a box is dropped or shrunk only where a certain
 //! sign rules a hit out, so every hit lies in a box that is proven to hold

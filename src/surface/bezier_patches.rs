@@ -1,25 +1,27 @@
 //! A model made of many Bézier patches (Newell's teapot is 32 bicubic ones),
-//! intersected through a hierarchy over the patches.
+//! intersected through a hierarchy over the patches' pieces.
 
 use super::patch_mesh::tessellate_patches;
 use super::tensor_patch::Patch;
 use crate::bernstein::Coefficient;
 use crate::curve::{Homogeneous, elevate_bezier};
-use crate::ray::patch::{PatchSet, intersect};
-use crate::ray::patch_tree::PatchTree;
+use crate::ray::patch::intersect;
+use crate::ray::patch_pieces::SearchPieces;
 use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a
 /// [`BezierSurface`] with its own `(u, v) ∈ [0, 1]²`.
 ///
-/// A ray does not test every patch: the patches' boxes (of their control
-/// nets, which contain them by the convex hull property) are held in a
-/// bounding-volume hierarchy, built once by the surface area heuristic, and
-/// a ray visits only the boxes it enters, nearer ones first, skipping those
-/// beyond its best hit so far. Each patch it reaches gets the certified
-/// search of [`BezierSurface`]'s [`Intersect`]. Patches of lower degrees are
-/// raised to the model's largest degrees for the search (degree elevation
-/// changes the control net, not the surface or its parameters).
+/// A ray does not test every patch: for the search, the patches are cut
+/// once into pieces (up to 16 each, until every piece is nearly bilinear),
+/// whose boxes (of their control nets, which contain them by the convex
+/// hull property) are held in a bounding-volume hierarchy, built once by
+/// the surface area heuristic; a ray visits only the boxes it enters,
+/// nearer ones first, skipping those beyond its best hit so far, and each
+/// piece it reaches gets the certified search of [`BezierSurface`]'s
+/// [`Intersect`]. Patches of lower degrees are raised to the model's
+/// largest degrees for the search (degree elevation changes the control
+/// net, not the surface or its parameters).
 ///
 /// [`intersect`](Intersect::intersect) gives the nearest hit over all
 /// patches, with `Hit::uv` in the hit patch's parameters;
@@ -47,12 +49,9 @@ use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tole
 #[derive(Debug, Clone, PartialEq)]
 pub struct BezierPatches {
     surfaces: Vec<BezierSurface>,
-    /// The largest degrees `(p, q)` over the patches.
-    degrees: (usize, usize),
-    /// The patches' nets raised to `degrees`, homogeneous with unit
-    /// weights.
-    patches: Vec<Patch>,
-    tree: PatchTree,
+    /// The patches' nets raised to the largest degrees, homogeneous with
+    /// unit weights, cut into the ray search's pieces.
+    search: SearchPieces,
     tolerance: Tolerance,
 }
 
@@ -65,24 +64,10 @@ impl BezierPatches {
         if patches.is_empty() {
             return Err(Error::NoPatches);
         }
-        let degrees = patches.iter().fold((0, 0), |(p, q), s| {
-            let (a, b) = s.degrees();
-            (p.max(a), q.max(b))
-        });
-        let nets: Vec<Patch> = patches
-            .iter()
-            .map(|s| Patch {
-                u: (0.0, 1.0),
-                v: (0.0, 1.0),
-                net: raised_net(s, degrees),
-            })
-            .collect();
-        let tree = PatchTree::new(&nets);
+        let (degrees, nets) = raised_nets(&patches);
         Ok(BezierPatches {
             surfaces: patches,
-            degrees,
-            patches: nets,
-            tree,
+            search: SearchPieces::new(&nets, degrees),
             tolerance: Tolerance::default(),
         })
     }
@@ -119,12 +104,8 @@ impl BezierPatches {
     /// `∂S/∂u × ∂S/∂v` (its limit at collapsed edges, as on the teapot's lid;
     /// facing the ray where the patch has no tangent plane).
     pub fn intersect_patch(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, Hit)> {
-        let set = PatchSet {
-            degrees: self.degrees,
-            patches: &self.patches,
-            tree: &self.tree,
-        };
-        let found = intersect(set, ray, t_min, t_max, &self.tolerance)?;
+        let mut found = intersect(self.search.set(), ray, t_min, t_max, &self.tolerance)?;
+        found.patch = self.search.owner(found.patch);
         let surface = &self.surfaces[found.patch];
         let hit = found.to_hit(
             ray,
@@ -144,8 +125,27 @@ impl BezierPatches {
     /// # Errors
     /// As [`BezierSurface::tessellate`].
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
-        tessellate_patches(self.degrees, &self.patches, tolerance)
+        let (degrees, nets) = raised_nets(&self.surfaces);
+        tessellate_patches(degrees, &nets, tolerance)
     }
+}
+
+/// The largest degrees `(p, q)` over `surfaces`, and each surface's net
+/// raised to them, homogeneous with unit weights, on `[0, 1]²`.
+fn raised_nets(surfaces: &[BezierSurface]) -> ((usize, usize), Vec<Patch>) {
+    let degrees = surfaces.iter().fold((0, 0), |(p, q), s| {
+        let (a, b) = s.degrees();
+        (p.max(a), q.max(b))
+    });
+    let nets = surfaces
+        .iter()
+        .map(|s| Patch {
+            u: (0.0, 1.0),
+            v: (0.0, 1.0),
+            net: raised_net(s, degrees),
+        })
+        .collect();
+    (degrees, nets)
 }
 
 /// The homogeneous net of `surface` raised to `degrees` (each row in `v`,
@@ -180,6 +180,6 @@ impl Intersect for BezierPatches {
     }
 
     fn bounds(&self) -> Aabb {
-        self.tree.all
+        self.search.bounds()
     }
 }

@@ -12,7 +12,7 @@
 use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::{Homogeneous, unit_direction, validate_points, validate_weights};
 use crate::ray::patch::{PatchSet, intersect};
-use crate::ray::patch_tree::PatchTree;
+use crate::ray::patch_pieces::SearchPieces;
 use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -47,8 +47,9 @@ macro_rules! tensor_surface_traits {
         }
 
         /// Ray intersection by Bézier clipping and subdivision of the ray's
-        /// two plane distances on each Bézier patch (the patches visited
-        /// through a hierarchy over their boxes): a box is dropped or shrunk
+        /// two plane distances on each Bézier patch (the patches cut once
+        /// into up to 16 nearly bilinear pieces, visited through a hierarchy
+        /// over their boxes): a box is dropped or shrunk
         /// only where a certain sign rules a hit out; a box that Krawczyk's
         /// test proves to hold one root, or one below `2⁻¹⁴` a side, is
         /// finished by Newton's method, and only points on the surface to
@@ -61,7 +62,7 @@ macro_rules! tensor_surface_traits {
             }
 
             fn bounds(&self) -> $crate::Aabb {
-                self.$($path).+.tree.all
+                self.$($path).+.search.bounds()
             }
         }
 
@@ -118,9 +119,9 @@ pub(crate) struct PatchTable {
     /// The largest extent of the box of the projected control points
     /// (the scale of the normal's degeneracy test), computed once.
     extent: f64,
-    /// The hierarchy over the patches' boxes for ray intersection,
-    /// computed once.
-    pub(crate) tree: PatchTree,
+    /// The patches cut into pieces, with the hierarchy over them, for ray
+    /// intersection, computed once.
+    pub(crate) search: SearchPieces,
     /// The intersection accuracy.
     pub(crate) tolerance: Tolerance,
 }
@@ -254,14 +255,14 @@ impl PatchTable {
                 b = b.include(&Point3::from(h.wp / h.w));
             }
         }
-        let tree = PatchTree::new(&patches);
+        let search = SearchPieces::new(&patches, degrees);
         PatchTable {
             degrees,
             u_breaks,
             v_breaks,
             patches,
             extent: b.extent().amax(),
-            tree,
+            search,
             tolerance: Tolerance::default(),
         }
     }
@@ -320,11 +321,7 @@ impl PatchTable {
 
     /// What the ray–patch search runs over.
     pub(crate) fn search_set(&self) -> PatchSet<'_> {
-        PatchSet {
-            degrees: self.degrees,
-            patches: &self.patches,
-            tree: &self.tree,
-        }
+        self.search.set()
     }
 
     /// `S(u, v)`.
