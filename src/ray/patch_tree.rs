@@ -111,7 +111,8 @@ impl PatchTree {
             leaf: true,
         }];
         if !order.is_empty() {
-            build(&boxes, &mut order, 0, 0, 0, &mut nodes);
+            let centres: Vec<Point3<f64>> = boxes.iter().map(Aabb::center).collect();
+            build(&boxes, &centres, &mut order, 0, 0, 0, &mut nodes);
         }
         PatchTree {
             nodes,
@@ -176,6 +177,7 @@ impl PatchTree {
 /// children appended to `nodes` and built in turn.
 fn build(
     boxes: &[Aabb],
+    centres: &[Point3<f64>],
     order: &mut [u32],
     offset: usize,
     at: usize,
@@ -193,11 +195,11 @@ fn build(
         };
         return;
     }
-    let centre = |k: u32| boxes[k as usize].center();
+    let centre = |k: u32| centres[k as usize];
     let split = if depth < SAH_DEPTH {
-        sah_split(boxes, order)
+        sah_split(boxes, centres, order)
     } else {
-        let axis = widest_centre_axis(boxes, order);
+        let axis = widest_centre_axis(centres, order);
         let mid = order.len() / 2;
         order.select_nth_unstable_by(mid, |&x, &y| centre(x)[axis].total_cmp(&centre(y)[axis]));
         mid
@@ -216,15 +218,23 @@ fn build(
         leaf: false,
     };
     let (left, right) = order.split_at_mut(split);
-    build(boxes, left, offset, first, depth + 1, nodes);
-    build(boxes, right, offset + split, first + 1, depth + 1, nodes);
+    build(boxes, centres, left, offset, first, depth + 1, nodes);
+    build(
+        boxes,
+        centres,
+        right,
+        offset + split,
+        first + 1,
+        depth + 1,
+        nodes,
+    );
 }
 
 /// The axis along which the boxes' centres spread most.
-fn widest_centre_axis(boxes: &[Aabb], order: &[u32]) -> usize {
+fn widest_centre_axis(centres: &[Point3<f64>], order: &[u32]) -> usize {
     let spread = order
         .iter()
-        .fold(Aabb::EMPTY, |a, &k| a.include(&boxes[k as usize].center()));
+        .fold(Aabb::EMPTY, |a, &k| a.include(&centres[k as usize]));
     let e = spread.extent();
     if e.x >= e.y && e.x >= e.z {
         0
@@ -246,14 +256,14 @@ fn half_area(b: &Aabb) -> f64 {
 
 /// Sorts `order` along the best axis and returns the split position
 /// (`1 ..= len − 1`) of least surface-area cost.
-fn sah_split(boxes: &[Aabb], order: &mut [u32]) -> usize {
+fn sah_split(boxes: &[Aabb], centres: &[Point3<f64>], order: &mut [u32]) -> usize {
     let n = order.len();
     let mut best = (f64::INFINITY, 0_usize, n / 2);
     let mut suffix = vec![0.0_f64; n + 1];
+    let key = |axis: usize| move |&k: &u32| centres[k as usize][axis];
     for axis in 0..3 {
-        order.sort_unstable_by(|&x, &y| {
-            boxes[x as usize].center()[axis].total_cmp(&boxes[y as usize].center()[axis])
-        });
+        let key = key(axis);
+        order.sort_unstable_by(|x, y| key(x).total_cmp(&key(y)));
         let mut acc = Aabb::EMPTY;
         for i in (0..n).rev() {
             acc = acc.union(&boxes[order[i] as usize]);
@@ -268,9 +278,7 @@ fn sah_split(boxes: &[Aabb], order: &mut [u32]) -> usize {
             }
         }
     }
-    let axis = best.1;
-    order.sort_unstable_by(|&x, &y| {
-        boxes[x as usize].center()[axis].total_cmp(&boxes[y as usize].center()[axis])
-    });
+    let key = key(best.1);
+    order.sort_unstable_by(|x, y| key(x).total_cmp(&key(y)));
     best.2
 }

@@ -16,6 +16,7 @@ use crate::ray::patch_pieces::SearchPieces;
 use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
+use std::sync::OnceLock;
 
 /// `Surface`, `BoundedSurface` and `Intersect` for a tensor-product surface
 /// type whose [`PatchTable`] is at `self.$($path).+` (each method is the
@@ -62,7 +63,7 @@ macro_rules! tensor_surface_traits {
             }
 
             fn bounds(&self) -> $crate::Aabb {
-                self.$($path).+.search.bounds()
+                self.$($path).+.bounds()
             }
         }
 
@@ -105,7 +106,7 @@ pub(crate) struct Patch {
 
 /// The Bézier patches of a surface, one per non-empty knot rectangle, on a
 /// grid of breakpoints.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub(crate) struct PatchTable {
     /// Degrees `(p, q)`.
     pub(crate) degrees: (usize, usize),
@@ -119,9 +120,16 @@ pub(crate) struct PatchTable {
     /// The largest extent of the box of the projected control points
     /// (the scale of the normal's degeneracy test), computed once.
     extent: f64,
+    /// A box around the control points, padded for rounding as the
+    /// search's own boxes are.
+    bounds: Aabb,
     /// The patches cut into pieces, with the hierarchy over them, for ray
-    /// intersection, computed once.
-    pub(crate) search: SearchPieces,
+    /// intersection: built by the first ray, so that a surface that is
+    /// never intersected (or only as part of a [`BezierPatches`] model,
+    /// which has its own) does not hold them.
+    ///
+    /// [`BezierPatches`]: crate::BezierPatches
+    search: OnceLock<SearchPieces>,
     /// The intersection accuracy.
     pub(crate) tolerance: Tolerance,
 }
@@ -241,6 +249,17 @@ fn locate(breaks: &[f64], x: f64) -> usize {
     k.saturating_sub(1).min(last)
 }
 
+/// Equal when the surfaces are: the cached search pieces do not count.
+impl PartialEq for PatchTable {
+    fn eq(&self, other: &Self) -> bool {
+        self.degrees == other.degrees
+            && self.u_breaks == other.u_breaks
+            && self.v_breaks == other.v_breaks
+            && self.patches == other.patches
+            && self.tolerance == other.tolerance
+    }
+}
+
 impl PatchTable {
     /// The table of `patches` on the breakpoint grid (see the fields).
     pub(crate) fn new(
@@ -255,14 +274,15 @@ impl PatchTable {
                 b = b.include(&Point3::from(h.wp / h.w));
             }
         }
-        let search = SearchPieces::new(&patches, degrees);
+        let scale = b.min.coords.amax().max(b.max.coords.amax());
         PatchTable {
             degrees,
             u_breaks,
             v_breaks,
             patches,
             extent: b.extent().amax(),
-            search,
+            bounds: b.expand(64.0 * f64::EPSILON * scale),
+            search: OnceLock::new(),
             tolerance: Tolerance::default(),
         }
     }
@@ -321,7 +341,14 @@ impl PatchTable {
 
     /// What the ray–patch search runs over.
     pub(crate) fn search_set(&self) -> PatchSet<'_> {
-        self.search.set()
+        self.search
+            .get_or_init(|| SearchPieces::new(&self.patches, self.degrees))
+            .set()
+    }
+
+    /// A box around the surface (its control points, padded for rounding).
+    pub(crate) fn bounds(&self) -> Aabb {
+        self.bounds
     }
 
     /// `S(u, v)`.
