@@ -45,8 +45,6 @@ pub(crate) struct SearchPieces {
     pieces: Vec<Patch>,
     /// The index of the patch each piece was cut from.
     owners: Vec<u32>,
-    /// How many times each patch was cut in each direction.
-    depth: usize,
     tree: PatchTree,
 }
 
@@ -71,7 +69,6 @@ impl SearchPieces {
             degrees,
             pieces,
             owners,
-            depth,
             tree,
         }
     }
@@ -90,10 +87,12 @@ impl SearchPieces {
         self.owners[piece] as usize
     }
 
-    /// How many times the patches were cut in each direction.
+    /// How many times the patches were cut in each direction: patch 0
+    /// has `4^depth` pieces.
     #[cfg(test)]
     pub(crate) fn depth(&self) -> usize {
-        self.depth
+        let pieces_of_first = self.owners.iter().filter(|&&k| k == 0).count();
+        (pieces_of_first.trailing_zeros() / 2) as usize
     }
 
     /// The pieces.
@@ -141,7 +140,7 @@ fn quarters(patch: &Patch, (p, q): (usize, usize)) -> [Patch; 4] {
     let w = q + 1;
     let zero = Homogeneous::zero();
     // In u: each column (fixed j) is a curve in i.
-    let mut halves = [patch.net.clone(), patch.net.clone()];
+    let mut halves = [vec![zero; patch.net.len()], vec![zero; patch.net.len()]];
     let (mut left, mut right) = (vec![zero; p + 1], vec![zero; p + 1]);
     let mut column = vec![zero; p + 1];
     for j in 0..w {
@@ -161,7 +160,7 @@ fn quarters(patch: &Patch, (p, q): (usize, usize)) -> [Patch; 4] {
     let u_ranges = [(patch.u.0, um), (um, patch.u.1)];
     let cut_v =
         |half: &Vec<Homogeneous<3>>, left: &mut [Homogeneous<3>], right: &mut [Homogeneous<3>]| {
-            let (mut low, mut high) = (half.clone(), half.clone());
+            let (mut low, mut high) = (vec![zero; half.len()], vec![zero; half.len()]);
             for i in 0..=p {
                 let row = i * w..(i + 1) * w;
                 subdivide(&half[row.clone()], 0.5, left, right);

@@ -101,7 +101,7 @@ impl PatchTree {
                 b
             })
             .collect();
-        let pad = 64.0 * f64::EPSILON * scale;
+        let pad = rounding_pad(scale);
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
         let mut order: Vec<u32> = (0..patches.len() as u32).collect();
@@ -228,6 +228,13 @@ fn build(
         depth + 1,
         nodes,
     );
+}
+
+/// How far a box around control points of largest coordinate `scale` is
+/// padded for rounding (of the points' projection and of the search's
+/// arithmetic on them).
+pub(crate) fn rounding_pad(scale: f64) -> f64 {
+    64.0 * f64::EPSILON * scale
 }
 
 /// The axis along which the boxes' centres spread most.

@@ -13,6 +13,7 @@ use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::{Homogeneous, unit_direction, validate_points, validate_weights};
 use crate::ray::patch::{PatchSet, intersect};
 use crate::ray::patch_pieces::SearchPieces;
+use crate::ray::patch_tree::rounding_pad;
 use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -281,7 +282,7 @@ impl PatchTable {
             v_breaks,
             patches,
             extent: b.extent().amax(),
-            bounds: b.expand(64.0 * f64::EPSILON * scale),
+            bounds: b.expand(rounding_pad(scale)),
             search: OnceLock::new(),
             tolerance: Tolerance::default(),
         }
