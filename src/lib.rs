@@ -32,7 +32,7 @@
 //!   profiles with polynomial or rational Bézier spans (exact spheres and
 //!   tori from NURBS arcs), the same on a cubic approximation refined
 //!   by Newton's method for other profiles, and [`NewtonIntersector`] for
-//!   any [`BoundedSurface`]; accuracy is a [`Tolerance`];
+//!   any [`PatchBounds`]; accuracy is a [`Tolerance`];
 //! - feature `testing`: proptest strategies and law checkers for your own
 //!   curves and surfaces;
 //! - feature `serde`: `Serialize` and `Deserialize` for the curves, the
@@ -81,12 +81,15 @@ mod aabb;
 pub mod bernstein;
 pub mod curve;
 mod error;
+mod mesh;
 pub mod ray;
+pub mod revolution;
 pub mod roots;
 mod scratch;
 #[cfg(feature = "serde")]
 mod serde_impls;
-pub mod surface;
+mod surface;
+pub mod tensor;
 #[cfg(feature = "testing")]
 pub mod testing;
 
@@ -102,13 +105,18 @@ pub use curve::{
     MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier, RationalBezierSpan,
 };
 pub use error::Error;
-pub use ray::newton::{NewtonIntersector, NewtonReport};
-pub use ray::{ExactReport, Hit, Intersect, Ray, Tolerance};
-pub use surface::BoundedSurface;
-pub use surface::{
+pub use mesh::Mesh;
+pub use ray::newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
+pub use ray::{Hit, Intersect, Ray, Tolerance};
+pub use revolution::{ExactReport, Revolution};
+pub use surface::{PatchBounds, Surface};
+pub use tensor::{
     BSplineSurface, BezierPatch, BezierPatches, BezierSurface, NurbsSurface, RationalBezierPatch,
 };
-pub use surface::{Mesh, Revolution, Surface};
+
+/// The former name of [`PatchBounds`], kept so that code written against it
+/// still compiles.
+pub use surface::PatchBounds as BoundedSurface;
 
 /// The README's code blocks, compiled and run as doctests.
 #[cfg(doctest)]

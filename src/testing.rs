@@ -24,7 +24,7 @@
 //! `|f|/L`, which a wrong derivative (a wrong factor, a missing term) misses
 //! by orders of magnitude while correct ones pass with a wide margin.
 
-use crate::{BSpline, Bezier, BoundedSurface, Curve, Ray, Surface};
+use crate::{BSpline, Bezier, Curve, PatchBounds, Ray, Surface};
 use nalgebra::{Point, Point2, Point3, SVector, Vector3};
 use proptest::prelude::*;
 use std::fmt;
@@ -377,7 +377,7 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
     Ok(())
 }
 
-/// Checks [`BoundedSurface::bound_patch`] against samples: for the whole
+/// Checks [`PatchBounds::bound_patch`] against samples: for the whole
 /// domain and for each of the `4 × 4` and `3 × 5` sub-rectangles of it
 /// (edges included, so that patch and knot boundaries are crossed), every
 /// point of an `n × n` grid over the rectangle, its corners and edges
@@ -397,7 +397,7 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
 /// assert!(check_surface_bounds(&saddle, 9).is_ok());
 /// # Ok::<(), revolve::Error>(())
 /// ```
-pub fn check_surface_bounds<S: BoundedSurface>(surface: &S, n: usize) -> Result<(), LawViolation> {
+pub fn check_surface_bounds<S: PatchBounds>(surface: &S, n: usize) -> Result<(), LawViolation> {
     let [(u0, u1), (v0, v1)] = checked_domain(surface)?;
     let n = n.clamp(2, MAX_SAMPLES.isqrt());
     let at = |lo: f64, hi: f64, i: usize, m: usize| {

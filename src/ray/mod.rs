@@ -5,23 +5,8 @@
 //! the caller's normalization convention, and `t_min`/`t_max` are in the same
 //! units.
 
-#[cfg(test)]
-mod double_double;
-mod meridian_cells;
-mod meridian_newton;
+pub(crate) mod bvh;
 pub mod newton;
-pub(crate) mod patch;
-pub(crate) mod patch_pieces;
-pub(crate) mod patch_tree;
-pub(crate) mod profile_refine;
-pub(crate) mod revolution;
-mod select;
-mod span_form;
-#[cfg(test)]
-mod test_unit;
-mod turn_angle;
-
-pub use revolution::ExactReport;
 
 pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 

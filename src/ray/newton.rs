@@ -1,4 +1,4 @@
-//! Generic Newton intersection for any [`BoundedSurface`], seeded from a tree
+//! Generic Newton intersection for any [`PatchBounds`], seeded from a tree
 //! of conservatively bounded parameter patches, with diagnostics.
 //!
 //! # The method
@@ -21,7 +21,7 @@
 //! parameter rectangles of the given depth: each rectangle is halved in the
 //! parameter whose image is longer (estimated from the partial derivative at
 //! its centre times its width, and the chord across it). Each leaf gets a
-//! *conservative* box from [`BoundedSurface::bound_patch`]; each inner node
+//! *conservative* box from [`PatchBounds::bound_patch`]; each inner node
 //! the union of its children's boxes, which is conservative too.
 //!
 //! Per ray the tree is traversed depth first, nearer child first (by the
@@ -51,7 +51,7 @@
 //!
 //! A non-periodic parameter that steps out of its interval is clamped to it
 //! (the crate's curves evaluate outside points at the nearest end, so this is
-//! a projected Newton step); a periodic one ([`BoundedSurface::periodic`],
+//! a projected Newton step); a periodic one ([`PatchBounds::periodic`],
 //! the angle of a [`Revolution`](crate::Revolution)) is taken modulo its
 //! period. The run's answer is its iterate with the smallest residual; it is
 //! *converged* when that residual is at most `max(τ, 10⁻⁹)·scale` (the exact
@@ -83,7 +83,7 @@
 //!   setting can make a query run without end.
 //!
 //! # Cost
-//! Building evaluates [`bound_patch`](BoundedSurface::bound_patch) once per
+//! Building evaluates [`bound_patch`](PatchBounds::bound_patch) once per
 //! leaf (`2^depth` leaves, `depth ≤` [`MAX_DEPTH`]). A query allocates
 //! nothing: the traversal stack is a fixed array of `MAX_DEPTH + 1` entries
 //! (a depth-first walk that pushes both children holds at most one pending
@@ -127,7 +127,7 @@
 //! ```
 
 use super::SplitDirection;
-use crate::surface::BoundedSurface;
+use crate::surface::PatchBounds;
 use crate::{Aabb, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{Matrix3, Unit};
 
@@ -311,12 +311,12 @@ impl NewtonReport {
     }
 }
 
-/// Newton intersection of rays with any [`BoundedSurface`], seeded from a
+/// Newton intersection of rays with any [`PatchBounds`], seeded from a
 /// patch tree built once (see the [module docs](self) for the method and its
 /// rules).
 ///
 /// The intersector owns its surface `S`. Because `&T` is a
-/// [`BoundedSurface`] whenever `T` is, pass `&surface` to borrow instead (the
+/// [`PatchBounds`] whenever `T` is, pass `&surface` to borrow instead (the
 /// usual choice when the same surface also serves the exact solver, as in the
 /// example); pass the surface by value to keep one self-contained object in a
 /// scene.
@@ -342,7 +342,7 @@ struct Limits {
     max_iterations: u32,
 }
 
-impl<S: BoundedSurface> NewtonIntersector<S> {
+impl<S: PatchBounds> NewtonIntersector<S> {
     /// The intersector for `surface` with a patch tree of `depth` levels
     /// below the root (`2^depth` leaves; clamped to [`MAX_DEPTH`]), and the
     /// default [`Tolerance`] (full double precision, 32 iterations).
@@ -767,7 +767,7 @@ fn split_u<S: Surface>(surface: &S, u: (f64, f64), v: (f64, f64)) -> bool {
 /// the split direction.
 const LENGTH_SAMPLES: usize = 8;
 
-impl<S: BoundedSurface> Intersect for NewtonIntersector<S> {
+impl<S: PatchBounds> Intersect for NewtonIntersector<S> {
     /// The nearest hit Newton finds from the patch tree's starting points
     /// (see the [module docs](self)): every hit is a true intersection to the
     /// acceptance, but near tangency, or with two hits in one leaf, the

@@ -43,13 +43,13 @@
 //! decided by [`quick_roots`] (no root, or one certain sign change and its
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
-use super::SplitDirection;
 use super::meridian_cells::{Cell, MeridianCells, SpanBox, SpanCurves, product_weights};
 use super::meridian_newton::{meridian_angle, meridian_newton};
 use super::select::select;
 use super::span_form::{Fixed, ProfilePoint, Slices, SpanForm, Unweighted};
 use super::turn_angle::turn_angle;
 use crate::bernstein::{Coefficient, Polynomial, eval_with_derivative};
+use crate::ray::SplitDirection;
 use crate::roots::{QuickRoots, Root, find_roots_to, quick_roots};
 use crate::{RationalBezierSpan, Tolerance};
 use nalgebra::{Point3, Vector3};
@@ -1477,7 +1477,7 @@ mod tests {
     use crate::{BSpline, Curve};
     use nalgebra::Point2;
 
-    use crate::ray::test_unit::unit;
+    use crate::revolution::test_unit::unit;
 
     /// A clamped cubic B-spline profile of `count` points at size `scale`:
     /// radii in `[0, scale]` (the ends on the axis), heights rising with

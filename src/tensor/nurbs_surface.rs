@@ -1,9 +1,10 @@
 //! Tensor-product rational B-spline (NURBS) surfaces.
 
+use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
-use super::patch_mesh::tessellate_patches;
-use super::{BSplineSurface, Mesh};
+use super::tessellate::tessellate_patches;
 use crate::Error;
+use crate::Mesh;
 use nalgebra::{Point3, Vector3};
 
 /// A NURBS surface
@@ -180,4 +181,4 @@ impl From<BSplineSurface> for NurbsSurface {
     }
 }
 
-super::tensor_patch::tensor_surface_traits!(NurbsSurface, core.table);
+super::patch::tensor_surface_traits!(NurbsSurface, core.table);

@@ -671,7 +671,7 @@ impl MeridianCells {
 mod tests {
     use super::*;
 
-    use crate::ray::test_unit::unit;
+    use crate::revolution::test_unit::unit;
 
     /// Random boxes in `[0, scale] × [−scale, scale]` (radius × height),
     /// some touching the axis, some of zero height or zero radial width.

@@ -1,9 +1,9 @@
 //! Tensor-product Bézier surfaces.
 
-use super::Mesh;
-use super::patch_mesh::tessellate_patches;
-use super::tensor_patch::{Patch, PatchTable, flatten_points, rows_and_columns};
+use super::patch::{Patch, PatchTable, flatten_points, rows_and_columns};
+use super::tessellate::tessellate_patches;
 use crate::Error;
+use crate::Mesh;
 use crate::curve::{Homogeneous, check_derivatives};
 use nalgebra::{Point3, Vector3};
 
@@ -36,7 +36,7 @@ use nalgebra::{Point3, Vector3};
 ///   while the partials' cross product is resolved (sine of their angle
 ///   `≥ 10⁻⁶`); if successive ones converge (within `10⁻³`) the last is the
 ///   normal. `None` where none of these gives a normal: no tangent plane.
-/// - [`bound_patch`](crate::BoundedSurface::bound_patch) is the box of the
+/// - [`bound_patch`](crate::PatchBounds::bound_patch) is the box of the
 ///   sub-patch's control net (de Casteljau subdivision; convex hull
 ///   property), padded for rounding.
 ///
@@ -159,4 +159,4 @@ impl BezierSurface {
     }
 }
 
-super::tensor_patch::tensor_surface_traits!(BezierSurface, table);
+super::patch::tensor_surface_traits!(BezierSurface, table);

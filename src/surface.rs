@@ -1,22 +1,6 @@
-//! Parametric surfaces: the [`Surface`] trait, surfaces of revolution and
-//! tensor-product (Bézier, B-spline, NURBS) surfaces.
-
-mod bezier_patches;
-mod bezier_surface;
-mod bspline_surface;
-mod mesh;
-mod nurbs_surface;
-mod patch_mesh;
-mod profile_approximation;
-mod revolution;
-pub(crate) mod tensor_patch;
-
-pub use bezier_patches::BezierPatches;
-pub use bezier_surface::BezierSurface;
-pub use bspline_surface::{BSplineSurface, BezierPatch};
-pub use mesh::Mesh;
-pub use nurbs_surface::{NurbsSurface, RationalBezierPatch};
-pub use revolution::Revolution;
+//! The [`Surface`] trait every surface kind implements, and [`PatchBounds`]:
+//! a surface that can box any sub-rectangle of its parameters (what the
+//! generic Newton intersector needs to find starting points).
 
 use crate::Aabb;
 use nalgebra::{Point3, Unit, Vector3};
@@ -60,7 +44,7 @@ pub trait Surface {
 /// `S(u, v)` for every `(u, v)` in the rectangle (up to the rounding of
 /// [`eval`](Surface::eval), which implementors pad for). A box that is too
 /// large only costs time; one that is too small makes ray casters miss hits.
-pub trait BoundedSurface: Surface {
+pub trait PatchBounds: Surface {
     /// A box containing `S([u₀, u₁] × [v₀, v₁])`, for `u = (u₀, u₁)` and
     /// `v = (v₀, v₁)` with `u₀ ≤ u₁`, `v₀ ≤ v₁` inside the
     /// [domain](Surface::domain).
@@ -95,7 +79,7 @@ impl<S: Surface + ?Sized> Surface for &S {
     }
 }
 
-impl<S: BoundedSurface + ?Sized> BoundedSurface for &S {
+impl<S: PatchBounds + ?Sized> PatchBounds for &S {
     fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
         (**self).bound_patch(u, v)
     }

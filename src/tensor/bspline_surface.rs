@@ -1,13 +1,14 @@
 //! Tensor-product B-spline surfaces, and the spline core they share with the
 //! rational ones (knot refinement into Bézier patches, knot insertion).
 
-use super::patch_mesh::tessellate_patches;
-use super::tensor_patch::{
+use super::BezierSurface;
+use super::patch::{
     Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
     weight_scale,
 };
-use super::{BezierSurface, Mesh};
+use super::tessellate::tessellate_patches;
 use crate::Error;
+use crate::Mesh;
 use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{
     Homogeneous, boehm_insert, check_derivative_points, knot_to_insert, validate_knots,
@@ -196,7 +197,7 @@ impl BSplineSurface {
     }
 }
 
-super::tensor_patch::tensor_surface_traits!(BSplineSurface, core.table);
+super::patch::tensor_surface_traits!(BSplineSurface, core.table);
 
 /// A (rational or polynomial) tensor-product spline: the data and the
 /// Bézier patch table shared by [`BSplineSurface`] and

@@ -31,7 +31,7 @@
 //! Newton's method without that proof.
 //! The patches, cut once into nearly bilinear pieces
 //! ([`SearchPieces`](super::patch_pieces::SearchPieces)), are visited
-//! nearest first through their hierarchy ([`PatchTree`]) and the search
+//! nearest first through their hierarchy ([`Bvh`]) and the search
 //! stops at the best hit so far.
 //!
 //! No root is discarded: a box is dropped or shrunk only where a certain
@@ -41,9 +41,9 @@
 //! be found or not, as for the other intersectors; no hit is reported that
 //! is not on the surface to the tolerance.
 
-use super::patch_tree::{PatchTree, Slab};
+use super::patch::{Patch, tensor_jet};
 use crate::curve::unit_direction;
-use crate::surface::tensor_patch::{Patch, tensor_jet};
+use crate::ray::bvh::{Bvh, Slab};
 use crate::{Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 
@@ -113,7 +113,9 @@ const STACK_NET: usize = 16;
 pub(crate) struct PatchSet<'a> {
     pub(crate) degrees: (usize, usize),
     pub(crate) patches: &'a [Patch],
-    pub(crate) tree: &'a PatchTree,
+    pub(crate) tree: &'a Bvh,
+    /// Largest control-point coordinate: the scale of the tolerance.
+    pub(crate) scale: f64,
 }
 
 /// The nearest hit of `ray` with `t_min < t < t_max` on the patches of
@@ -146,7 +148,7 @@ pub(crate) fn intersect(
     };
     let e1 = dh.cross(&helper).normalize();
     let e2 = dh.cross(&e1);
-    let scale = set.tree.scale.max(f64::MIN_POSITIVE);
+    let scale = set.scale.max(f64::MIN_POSITIVE);
     let accept = (tol.relative * scale).max(ACCEPT * scale.max(o.amax()));
     // Hits within the position uncertainty of the origin are the origin.
     let t_floor = t_min + accept / dn;

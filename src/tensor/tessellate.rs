@@ -80,9 +80,9 @@
 //! patch's interior vertices are its own). Edges collapsed to a
 //! point are not matched (every one of their vertices is that point).
 
-use super::Mesh;
-use super::tensor_patch::{Patch, PatchTable, tensor_jet};
+use super::patch::{Patch, PatchTable, tensor_jet};
 use crate::Error;
+use crate::Mesh;
 use crate::bernstein::{self, Coefficient};
 use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE};
 use crate::error::try_with_capacity;

@@ -2,8 +2,8 @@
 //! hit of the profile's cubic approximation, refined on the profile itself.
 
 use super::meridian_newton::{meridian_angle, meridian_newton};
-use super::revolution::{ACCEPT, LocalHit};
 use super::span_form::ProfilePoint;
+use super::span_table::{ACCEPT, LocalHit};
 use super::turn_angle::turn_angle;
 use crate::{Curve, Tolerance};
 use nalgebra::{Point3, Vector3};

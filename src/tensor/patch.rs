@@ -9,17 +9,16 @@
 //! along the column of results (in `s`) (Farin, *Curves and Surfaces for
 //! CAGD*, ch. 16–17), on stack scratch space.
 
+use super::search::{PatchSet, intersect};
+use super::search_pieces::SearchPieces;
 use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::{Homogeneous, unit_direction, validate_points, validate_weights};
-use crate::ray::patch::{PatchSet, intersect};
-use crate::ray::patch_pieces::SearchPieces;
-use crate::ray::patch_tree::rounding_pad;
 use crate::scratch::with_scratch;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 use std::sync::OnceLock;
 
-/// `Surface`, `BoundedSurface` and `Intersect` for a tensor-product surface
+/// `Surface`, `PatchBounds` and `Intersect` for a tensor-product surface
 /// type whose [`PatchTable`] is at `self.$($path).+` (each method is the
 /// table's), and its `with_tolerance` and `tolerance`.
 macro_rules! tensor_surface_traits {
@@ -42,7 +41,7 @@ macro_rules! tensor_surface_traits {
             }
         }
 
-        impl $crate::BoundedSurface for $ty {
+        impl $crate::PatchBounds for $ty {
             fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> $crate::Aabb {
                 self.$($path).+.bound(u, v)
             }
@@ -103,6 +102,23 @@ pub(crate) struct Patch {
     pub(crate) v: (f64, f64),
     /// `(wᵢⱼPᵢⱼ, wᵢⱼ)`, row-major: `net[i·(q + 1) + j]`.
     pub(crate) net: Vec<Homogeneous<3>>,
+}
+
+impl Patch {
+    /// The box of the projected control net, which holds the patch (convex
+    /// hull property, weights positive); not padded.
+    pub(crate) fn net_box(&self) -> Aabb {
+        self.net
+            .iter()
+            .fold(Aabb::EMPTY, |b, h| b.include(&Point3::from(h.wp / h.w)))
+    }
+}
+
+/// How far a box around control points of largest coordinate `scale` is
+/// padded for rounding (of the points' projection and of the search's
+/// arithmetic on them).
+pub(crate) fn rounding_pad(scale: f64) -> f64 {
+    64.0 * f64::EPSILON * scale
 }
 
 /// The Bézier patches of a surface, one per non-empty knot rectangle, on a
@@ -269,12 +285,9 @@ impl PatchTable {
         v_breaks: Vec<f64>,
         patches: Vec<Patch>,
     ) -> Self {
-        let mut b = Aabb::EMPTY;
-        for p in &patches {
-            for h in &p.net {
-                b = b.include(&Point3::from(h.wp / h.w));
-            }
-        }
+        let b = patches
+            .iter()
+            .fold(Aabb::EMPTY, |b, p| b.union(&p.net_box()));
         let scale = b.min.coords.amax().max(b.max.coords.amax());
         PatchTable {
             degrees,

@@ -1,9 +1,9 @@
 //! Surfaces of revolution: a planar profile turned about an axis.
 
 use super::profile_approximation::approximate;
+use super::profile_refine::{acceptance, refine_on_profile};
+use super::span_table::{ExactReport, SpanTable};
 use crate::curve::RationalBezierSpan;
-use crate::ray::profile_refine::{acceptance, refine_on_profile};
-use crate::ray::revolution::{ExactReport, SpanTable};
 use crate::{Aabb, Curve, Error, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{
     Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
@@ -329,7 +329,7 @@ impl<C: Curve<2>> Revolution<C> {
         t_min: f64,
         t_max: f64,
         report: &mut ExactReport,
-    ) -> Option<crate::ray::revolution::LocalHit> {
+    ) -> Option<super::span_table::LocalHit> {
         let (r_max, y_range) = table.local_bounds();
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
         // As in the exact intersector, a hit within the position
@@ -644,7 +644,7 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
 ///    plus world coordinate magnitudes (`n` the profile degree), which covers
 ///    the rounding of subdivision, of the transform and of
 ///    [`eval`](Surface::eval).
-impl<C: Curve<2>> crate::surface::BoundedSurface for Revolution<C> {
+impl<C: Curve<2>> crate::surface::PatchBounds for Revolution<C> {
     fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
         let (u0, u1) = (u.0.min(u.1), u.0.max(u.1));
         let (v0, v1) = (v.0.min(v.1), v.0.max(v.1));
@@ -685,7 +685,7 @@ impl<C: Curve<2>> crate::surface::BoundedSurface for Revolution<C> {
 }
 
 /// Conservative ranges of the profile's `x` and `y` over `[u0, u1]`, and the
-/// profile degree used for the rounding pad (see the `BoundedSurface` impl).
+/// profile degree used for the rounding pad (see the `PatchBounds` impl).
 fn profile_ranges<C: Curve<2>>(profile: &C, u0: f64, u1: f64) -> ((f64, f64), (f64, f64), usize) {
     let empty = (f64::INFINITY, f64::NEG_INFINITY);
     let widen = |r: (f64, f64), x: f64| (r.0.min(x), r.1.max(x));

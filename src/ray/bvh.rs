@@ -1,20 +1,18 @@
-//! A bounding-volume hierarchy over the Bézier patches of a surface or of a
-//! model made of many patches, so that a ray tests only the patches whose
-//! boxes it enters, nearest first.
+//! A bounding-volume hierarchy over boxed items (the pieces of tensor
+//! patches, for one), so that a ray visits only the items whose boxes it
+//! enters, nearest first.
 //!
-//! Each patch's box is the box of its projected control net (the convex hull
-//! property, weights positive), padded for rounding. The tree is built once,
-//! top down: a node's patches are split along the axis and at the position
-//! (between patches sorted by box centre) that minimise the surface area
-//! heuristic `area(left)·count(left) + area(right)·count(right)` (MacDonald &
-//! Booth 1990); a node of one patch is a leaf. Below depth [`SAH_DEPTH`]
+//! The tree is built once, top down: a node's items are split along the axis
+//! and at the position (between items sorted by box centre) that minimise
+//! the surface area heuristic `area(left)·count(left) +
+//! area(right)·count(right)` (MacDonald & Booth 1990); a node of one item is
+//! a leaf. Below depth [`SAH_DEPTH`]
 //! splits are at the median, so the depth is at most
 //! `SAH_DEPTH + ⌈log₂ n⌉` and the traversal stack stays on the stack.
 //!
 //! A ray visits the tree depth first, the nearer child first, and skips a
 //! node whose box it enters beyond the best hit found so far.
 
-use crate::surface::tensor_patch::Patch;
 use crate::{Aabb, Ray};
 use nalgebra::Point3;
 
@@ -25,7 +23,7 @@ const SAH_DEPTH: usize = 40;
 /// Nodes the traversal stack holds: one per level.
 const STACK: usize = SAH_DEPTH + 64 + 2;
 
-/// One node: a leaf holds patch `order[first]`; an inner node's children
+/// One node: a leaf holds item `order[first]`; an inner node's children
 /// are nodes `first` and `first + 1`.
 #[derive(Debug, Clone, PartialEq)]
 struct Node {
@@ -34,16 +32,12 @@ struct Node {
     leaf: bool,
 }
 
-/// The hierarchy over a list of patches.
+/// The hierarchy over a list of boxed items.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct PatchTree {
+pub(crate) struct Bvh {
     nodes: Vec<Node>,
-    /// Patch indices, in leaf order.
+    /// Item indices, in leaf order.
     order: Vec<u32>,
-    /// Largest control-point coordinate: the scale of the tolerance.
-    pub(crate) scale: f64,
-    /// The union of the patches' boxes.
-    pub(crate) all: Aabb,
 }
 
 /// The ray's slab data, computed once per ray.
@@ -85,26 +79,11 @@ impl Slab {
     }
 }
 
-impl PatchTree {
-    /// The tree over `patches` (at least one).
-    pub(crate) fn new(patches: &[Patch]) -> Self {
-        let mut scale = 0.0_f64;
-        let boxes: Vec<Aabb> = patches
-            .iter()
-            .map(|p| {
-                let mut b = Aabb::EMPTY;
-                for h in &p.net {
-                    let x = Point3::from(h.wp / h.w);
-                    scale = scale.max(x.coords.amax());
-                    b = b.include(&x);
-                }
-                b
-            })
-            .collect();
-        let pad = rounding_pad(scale);
-        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
+impl Bvh {
+    /// The hierarchy over `boxes` (one per item; item `i` is `boxes[i]`).
+    pub(crate) fn new(boxes: &[Aabb]) -> Self {
         let all = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(b));
-        let mut order: Vec<u32> = (0..patches.len() as u32).collect();
+        let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
         let mut nodes = vec![Node {
             bounds: all,
             first: 0,
@@ -112,17 +91,17 @@ impl PatchTree {
         }];
         if !order.is_empty() {
             let centres: Vec<Point3<f64>> = boxes.iter().map(Aabb::center).collect();
-            build(&boxes, &centres, &mut order, 0, 0, 0, &mut nodes);
+            build(boxes, &centres, &mut order, 0, 0, 0, &mut nodes);
         }
-        PatchTree {
-            nodes,
-            order,
-            scale,
-            all,
-        }
+        Bvh { nodes, order }
     }
 
-    /// Calls `search(patch, enter)` for every patch whose box the ray enters
+    /// The union of the items' boxes.
+    pub(crate) fn bounds(&self) -> Aabb {
+        self.nodes[0].bounds
+    }
+
+    /// Calls `search(item, enter)` for every item whose box the ray enters
     /// at some `t` in `[lo, best]`, nearer subtrees first, where `best`
     /// starts at `hi` and is replaced by each value `search` returns (the
     /// best hit so far; it must not grow).
@@ -228,13 +207,6 @@ fn build(
         depth + 1,
         nodes,
     );
-}
-
-/// How far a box around control points of largest coordinate `scale` is
-/// padded for rounding (of the points' projection and of the search's
-/// arithmetic on them).
-pub(crate) fn rounding_pad(scale: f64) -> f64 {
-    64.0 * f64::EPSILON * scale
 }
 
 /// The axis along which the boxes' centres spread most.

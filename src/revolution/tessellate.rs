@@ -1,6 +1,5 @@
-//! Triangle meshes of surfaces of revolution with a deviation bound, and OBJ
-//! export (the [`Mesh`] type; tensor-product surfaces are meshed in
-//! `patch_mesh.rs`).
+//! Triangle meshes of a surface of revolution with a certified deviation
+//! bound.
 //!
 //! The profile is flattened adaptively ([`Flattening`](crate::Flattening)) so
 //! that each profile piece lies within `ε_p` of its chord, and the angle is cut
@@ -15,13 +14,12 @@
 //!
 //! of the mesh; the tolerance is split evenly between the two terms.
 
+use super::surface::profile_normal;
 use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 use crate::error::try_with_capacity;
-use crate::surface::revolution::profile_normal;
-use crate::{Curve, Error, Revolution};
+use crate::{Curve, Error, Mesh, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 use std::f64::consts::{PI, TAU};
-use std::io::{self, Write};
 
 /// The most angular steps [`Revolution::tessellate`] uses; tolerances that
 /// would need more are refused (`ToleranceTooSmall`).
@@ -33,60 +31,6 @@ struct Plan {
     flat: crate::Flattening<2>,
     steps: usize,
     sagitta: f64,
-}
-
-/// A triangle mesh with per-vertex normals and surface parameters.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Mesh {
-    /// Vertex positions.
-    pub positions: Vec<Point3<f64>>,
-    /// Unit normals per vertex (the surface's orientation). A ring has one
-    /// normal per vertex, the surface's (right-limit) normal; where the
-    /// profile has a crease the triangles below it share those normals
-    /// (known limitation: no split normals at creases).
-    pub normals: Vec<Unit<Vector3<f64>>>,
-    /// Surface parameters `(u, v)` per vertex.
-    pub uvs: Vec<(f64, f64)>,
-    /// Triangles as vertex indices `[a, b, c]`, ordered so that
-    /// `(b − a) × (c − a)` points along the surface normal.
-    pub triangles: Vec<[u32; 3]>,
-    /// Every point of the surface lies within `bound` of the mesh.
-    pub bound: f64,
-}
-
-impl Mesh {
-    /// The most vertices [`Revolution::tessellate`] and the tensor surfaces'
-    /// `tessellate` make (`2²⁴`; with
-    /// normals, parameters and about two triangles per vertex, about 1.4 GB);
-    /// tolerances that would need more are refused.
-    pub const MAX_VERTICES: usize = 1 << 24;
-
-    /// Writes the mesh as Wavefront OBJ (`v`, `vt`, `vn` and `f v/vt/vn`
-    /// lines; indices are 1-based). `vt` holds the surface parameters
-    /// `(u, v)` as they are (not normalized to `[0, 1]`).
-    pub fn write_obj(&self, out: &mut impl Write) -> io::Result<()> {
-        writeln!(
-            out,
-            "# revolve mesh: {} vertices, {} triangles",
-            self.positions.len(),
-            self.triangles.len()
-        )?;
-        writeln!(out, "# deviation bound {:e}", self.bound)?;
-        for p in &self.positions {
-            writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
-        }
-        for (u, v) in &self.uvs {
-            writeln!(out, "vt {u} {v}")?;
-        }
-        for n in &self.normals {
-            writeln!(out, "vn {} {} {}", n.x, n.y, n.z)?;
-        }
-        for t in &self.triangles {
-            let [a, b, c] = t.map(|i| i + 1);
-            writeln!(out, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
-        }
-        Ok(())
-    }
 }
 
 impl<C: Curve<2>> Revolution<C> {

@@ -1,12 +1,12 @@
 //! A model made of many Bézier patches (Newell's teapot is 32 bicubic ones),
 //! intersected through a hierarchy over the patches' pieces.
 
-use super::patch_mesh::tessellate_patches;
-use super::tensor_patch::Patch;
+use super::patch::Patch;
+use super::search::intersect;
+use super::search_pieces::SearchPieces;
+use super::tessellate::tessellate_patches;
 use crate::bernstein::Coefficient;
 use crate::curve::{Homogeneous, elevate_bezier};
-use crate::ray::patch::intersect;
-use crate::ray::patch_pieces::SearchPieces;
 use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a

@@ -20,12 +20,13 @@
 //! cutting. Pieces are mathematically the patch restricted to a rectangle;
 //! their control points carry the rounding of a few halvings and additions.
 
-use super::patch::PatchSet;
-use super::patch_tree::PatchTree;
+use super::patch::Patch;
+use super::patch::rounding_pad;
+use super::search::PatchSet;
 use crate::Aabb;
 use crate::bernstein::subdivide;
 use crate::curve::Homogeneous;
-use crate::surface::tensor_patch::Patch;
+use crate::ray::bvh::Bvh;
 
 /// The most times a patch is cut in each direction (up to `4^MAX_DEPTH`
 /// pieces per patch).
@@ -45,7 +46,9 @@ pub(crate) struct SearchPieces {
     pieces: Vec<Patch>,
     /// The index of the patch each piece was cut from.
     owners: Vec<u32>,
-    tree: PatchTree,
+    tree: Bvh,
+    /// Largest control-point coordinate: the scale of the tolerance.
+    scale: f64,
 }
 
 impl SearchPieces {
@@ -64,12 +67,23 @@ impl SearchPieces {
             (pieces, owners) = (finer, finer_owners);
             depth += 1;
         }
-        let tree = PatchTree::new(&pieces);
+        let mut scale = 0.0_f64;
+        let boxes: Vec<Aabb> = pieces
+            .iter()
+            .map(|piece| {
+                let b = piece.net_box();
+                scale = scale.max(b.min.coords.amax()).max(b.max.coords.amax());
+                b
+            })
+            .collect();
+        let pad = rounding_pad(scale);
+        let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
         SearchPieces {
             degrees,
             pieces,
             owners,
-            tree,
+            tree: Bvh::new(&boxes),
+            scale,
         }
     }
 
@@ -79,6 +93,7 @@ impl SearchPieces {
             degrees: self.degrees,
             patches: &self.pieces,
             tree: &self.tree,
+            scale: self.scale,
         }
     }
 
@@ -104,7 +119,7 @@ impl SearchPieces {
     /// A box holding every piece's control points (so the whole surface),
     /// padded for rounding.
     pub(crate) fn bounds(&self) -> Aabb {
-        self.tree.all
+        self.tree.bounds()
     }
 }
 
@@ -182,8 +197,8 @@ fn quarters(patch: &Patch, (p, q): (usize, usize)) -> [Patch; 4] {
 
 #[cfg(test)]
 mod tests {
+    use crate::tensor::patch::Patch;
     use super::*;
-    use crate::surface::tensor_patch::Patch;
     use nalgebra::{Point3, Vector3};
 
     /// The point of a homogeneous net at `(s, t)` by the tensor Bernstein

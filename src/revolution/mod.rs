@@ -1,0 +1,28 @@
+//! Surfaces of revolution: the surface ([`Revolution`]), its certified
+//! intersector, the profile approximation for curves without Bézier spans,
+//! and its tessellation.
+//!
+//! A ray meets `S(u, θ)` where the ray point at height `y(u)` lies at
+//! distance `|x(u)|` from the axis: the angle is eliminated and each Bézier
+//! span of the profile gives one polynomial in `u` whose roots are all
+//! isolated ([`span_table`]). Profiles without spans are approximated by
+//! cubic pieces within a certified deviation and the hits refined on the
+//! profile itself ([`profile_approximation`], [`profile_refine`]).
+
+#[cfg(test)]
+mod double_double;
+mod meridian_cells;
+mod meridian_newton;
+mod profile_approximation;
+mod profile_refine;
+mod select;
+mod span_form;
+mod span_table;
+mod surface;
+mod tessellate;
+#[cfg(test)]
+mod test_unit;
+mod turn_angle;
+
+pub use span_table::ExactReport;
+pub use surface::Revolution;

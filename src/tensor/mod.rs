@@ -1,0 +1,22 @@
+//! Tensor-product surfaces: [`BezierSurface`], [`BSplineSurface`],
+//! [`NurbsSurface`] and models made of many Bézier patches
+//! ([`BezierPatches`]), with the certified patch search and their
+//! tessellation.
+//!
+//! Every kind is held as a table of homogeneous Bézier patches
+//! ([`PatchTable`](patch_table::PatchTable)); evaluation, bounds, the ray
+//! search and tessellation all work on that table.
+
+mod bezier_patches;
+mod bezier_surface;
+mod bspline_surface;
+mod nurbs_surface;
+mod patch;
+mod search;
+mod search_pieces;
+mod tessellate;
+
+pub use bezier_patches::BezierPatches;
+pub use bezier_surface::BezierSurface;
+pub use bspline_surface::{BSplineSurface, BezierPatch};
+pub use nurbs_surface::{NurbsSurface, RationalBezierPatch};
