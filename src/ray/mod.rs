@@ -5,6 +5,7 @@
 //! the caller's normalization convention, and `t_min`/`t_max` are in the same
 //! units.
 
+pub(crate) mod acceptance;
 pub(crate) mod bvh;
 pub mod newton;
 

@@ -127,6 +127,7 @@
 //! ```
 
 use super::SplitDirection;
+use super::acceptance::Acceptance;
 use crate::surface::PatchBounds;
 use crate::{Aabb, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{Matrix3, Unit};
@@ -134,10 +135,6 @@ use nalgebra::{Matrix3, Unit};
 /// The deepest patch tree [`NewtonIntersector::new`] builds: `2¹⁶` leaves
 /// (about 10 MB of boxes). Larger depths are clamped to it.
 pub const MAX_DEPTH: u32 = 16;
-
-/// A run is converged when its residual is within
-/// `max(tolerance, ACCEPT) × scale` (the exact solver's acceptance).
-const ACCEPT: f64 = 1e-9;
 
 /// Entries of the traversal stack: at most one pending sibling per level plus
 /// the node being expanded.
@@ -337,8 +334,9 @@ pub struct NewtonIntersector<S> {
 /// Thresholds of one query, from the tolerance and the surface's scale.
 #[derive(Debug, Clone, Copy)]
 struct Limits {
-    target: f64,
-    accept: f64,
+    /// A run is converged when its residual is within
+    /// `acceptance.distance` ([`Acceptance::newton`]).
+    acceptance: Acceptance,
     max_iterations: u32,
 }
 
@@ -480,8 +478,7 @@ impl<S: PatchBounds> NewtonIntersector<S> {
     fn limits(&self) -> Limits {
         let tolerance = self.tolerance.clamped();
         Limits {
-            target: tolerance.relative * self.scale,
-            accept: tolerance.relative.max(ACCEPT) * self.scale,
+            acceptance: Acceptance::newton(&tolerance, self.scale),
             max_iterations: tolerance.max_iterations,
         }
     }
@@ -517,7 +514,7 @@ impl<S: PatchBounds> NewtonIntersector<S> {
     ) -> Option<Hit> {
         let ray = &units.ray;
         let limits = self.limits();
-        let t_floor = t_min + limits.accept;
+        let t_floor = t_min + limits.acceptance.distance;
         let mut t_best = t_max;
         let mut best: Option<NewtonRun> = None;
         let first_leaf = (1usize << self.depth) - 1;
@@ -629,7 +626,7 @@ impl<S: PatchBounds> NewtonIntersector<S> {
             if !(r.is_finite() && t.is_finite()) {
                 break NewtonFinish::Diverged;
             }
-            if r <= limits.target {
+            if r <= limits.acceptance.target {
                 break NewtonFinish::ResidualSmall;
             }
             if iterations >= limits.max_iterations {
@@ -659,10 +656,10 @@ impl<S: PatchBounds> NewtonIntersector<S> {
             if r_new < best.0 {
                 best = (r_new, t, u, v);
             }
-            if moved <= limits.target {
+            if moved <= limits.acceptance.target {
                 break NewtonFinish::StepSmall;
             }
-            if r <= limits.accept && (r_new >= r || r_new.is_nan()) {
+            if limits.acceptance.accepts(r) && (r_new >= r || r_new.is_nan()) {
                 break NewtonFinish::RoundingFloor;
             }
             r = r_new;
@@ -678,7 +675,7 @@ impl<S: PatchBounds> NewtonIntersector<S> {
             // is provisional. Any other finish means this run can do no
             // better, and its best iterate stands on its residual.
             converged: finish != NewtonFinish::IterationCap
-                && residual <= limits.accept
+                && limits.acceptance.accepts(residual)
                 && t.is_finite(),
         }
     }

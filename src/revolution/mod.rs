@@ -9,14 +9,19 @@
 //! cubic pieces within a certified deviation and the hits refined on the
 //! profile itself ([`profile_approximation`], [`profile_refine`]).
 
+mod candidates;
 #[cfg(test)]
 mod double_double;
 mod meridian_cells;
 mod meridian_newton;
+mod one_root;
 mod profile_approximation;
 mod profile_refine;
+mod query;
 mod select;
+mod span_culling;
 mod span_form;
+mod span_search;
 mod span_table;
 mod surface;
 mod tessellate;
@@ -24,5 +29,5 @@ mod tessellate;
 mod test_unit;
 mod turn_angle;
 
-pub use span_table::ExactReport;
+pub use span_search::ExactReport;
 pub use surface::Revolution;

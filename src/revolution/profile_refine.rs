@@ -2,18 +2,12 @@
 //! hit of the profile's cubic approximation, refined on the profile itself.
 
 use super::meridian_newton::{meridian_angle, meridian_newton};
+use super::query::LocalHit;
 use super::span_form::ProfilePoint;
-use super::span_table::{ACCEPT, LocalHit};
 use super::turn_angle::turn_angle;
+use crate::ray::acceptance::Acceptance;
 use crate::{Curve, Tolerance};
 use nalgebra::{Point3, Vector3};
-
-/// The residual within which a refined hit is accepted:
-/// `max(tolerance, 1e-12) ×` the object's `scale` (and the origin's
-/// distance `|o|`, whose rounding `o + t·d` carries).
-pub(crate) fn acceptance(scale: f64, o: &Vector3<f64>, tol: &Tolerance) -> f64 {
-    (tol.relative * scale).max(ACCEPT * scale.max(o.amax()))
-}
 
 /// Newton's method in the meridian plane ([`meridian_newton`]) on `profile`
 /// over its `domain`, for the local ray `o + t·d`, from the approximation's
@@ -32,8 +26,8 @@ pub(crate) fn refine_on_profile<C: Curve<2>>(
     tol: &Tolerance,
     iterations: &mut u32,
 ) -> Option<LocalHit> {
-    let target = tol.relative * scale;
-    let accept = acceptance(scale, o, tol);
+    let acceptance = Acceptance::certified(tol, scale, o);
+    let target = acceptance.target;
     let eval = |u: f64| {
         let (p, dp) = profile.eval_with_derivative(u);
         ProfilePoint {
@@ -53,7 +47,7 @@ pub(crate) fn refine_on_profile<C: Curve<2>>(
         eval,
         iterations,
     );
-    if !(r <= accept && t.is_finite()) {
+    if !(acceptance.accepts(r) && t.is_finite()) {
         return None;
     }
     let (sn, cs) = meridian_angle(&(o + d * t), at.x);

@@ -9,7 +9,7 @@
 //! use slices ([`Slices`]). Both compute the same numbers. Polynomial spans
 //! carry [`Unweighted`], whose unit weights the compiler folds away.
 
-use super::span_table::Query;
+use super::query::Query;
 use crate::bernstein::Polynomial;
 use crate::scratch::with_scratch;
 

@@ -1,9 +1,12 @@
 //! Surfaces of revolution: a planar profile turned about an axis.
 
 use super::profile_approximation::approximate;
-use super::profile_refine::{acceptance, refine_on_profile};
-use super::span_table::{ExactReport, SpanTable};
+use super::profile_refine::refine_on_profile;
+use super::query::LocalHit;
+use super::span_search::ExactReport;
+use super::span_table::SpanTable;
 use crate::curve::RationalBezierSpan;
+use crate::ray::acceptance::Acceptance;
 use crate::{Aabb, Curve, Error, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{
     Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
@@ -329,7 +332,7 @@ impl<C: Curve<2>> Revolution<C> {
         t_min: f64,
         t_max: f64,
         report: &mut ExactReport,
-    ) -> Option<super::span_table::LocalHit> {
+    ) -> Option<LocalHit> {
         let (r_max, y_range) = table.local_bounds();
         let scale = r_max.max(y_range.0.abs()).max(y_range.1.abs());
         // As in the exact intersector, a hit within the position
@@ -337,7 +340,7 @@ impl<C: Curve<2>> Revolution<C> {
         // leaving the surface): the floor is `accept/|d|` past `t_min`.
         let m = d.amax();
         let dn = m * (d / m).norm();
-        let t_floor = t_min + acceptance(scale, &o.coords, &self.tolerance) / dn;
+        let t_floor = Acceptance::certified(&self.tolerance, scale, &o.coords).t_floor(t_min, dn);
         let mut from = t_min;
         for _ in 0..REFINE_TRIES {
             let guess = table.intersect(o, d, from, t_max, &self.tolerance, report)?;

@@ -43,6 +43,7 @@
 
 use super::patch::{Patch, tensor_jet};
 use crate::curve::unit_direction;
+use crate::ray::acceptance::Acceptance;
 use crate::ray::bvh::{Bvh, Slab};
 use crate::{Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -50,10 +51,6 @@ use nalgebra::{Point3, Unit, Vector3};
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
 /// handed to Newton's method.
 const SMALL: f64 = 1.0 / (1u64 << 14) as f64;
-
-/// Hits whose residual is within `max(tolerance, ACCEPT) ×` the scale are
-/// accepted (as the exact revolution intersector does).
-const ACCEPT: f64 = 1e-12;
 
 /// How far outside its patch (in the patch's parameters) Newton may land and
 /// still count: rounding only.
@@ -149,9 +146,9 @@ pub(crate) fn intersect(
     let e1 = dh.cross(&helper).normalize();
     let e2 = dh.cross(&e1);
     let scale = set.scale.max(f64::MIN_POSITIVE);
-    let accept = (tol.relative * scale).max(ACCEPT * scale.max(o.amax()));
+    let acceptance = Acceptance::certified(&tol, scale, &o);
     // Hits within the position uncertainty of the origin are the origin.
-    let t_floor = t_min + accept / dn;
+    let t_floor = acceptance.t_floor(t_min, dn);
     let (p, q) = set.degrees;
     let n = (p + 1) * (q + 1);
     let frame = Frame {
@@ -160,7 +157,7 @@ pub(crate) fn intersect(
         e1,
         e2,
         dh,
-        accept,
+        acceptance,
         // Every hit is polished to full precision, whatever the tolerance.
         target: Tolerance::default().relative * scale,
         iterations: tol.max_iterations,
@@ -283,11 +280,13 @@ fn search_patch(
             // rules a root out.
             let whole = cell.s == (0.0, 1.0) && cell.t == (0.0, 1.0);
             let noise = || (0..3).map(|f| bound[f] * per_weight[f]).sum();
-            if (whole || ws <= SMALL || wt <= SMALL) && extent(work, noise()) <= frame.accept {
+            if (whole || ws <= SMALL || wt <= SMALL)
+                && extent(work, noise()) <= frame.acceptance.distance
+            {
                 let c = work[0];
                 let off = c[0].hypot(c[1]) / c[3];
                 let t_hit = c[2] / c[3] / dn;
-                if off <= frame.accept && t_hit > t_floor && t_hit < t_best {
+                if frame.acceptance.accepts(off) && t_hit > t_floor && t_hit < t_best {
                     t_best = t_hit;
                     best = Some(PatchHit {
                         patch: k,
@@ -905,7 +904,8 @@ struct Frame {
     e1: Vector3<f64>,
     e2: Vector3<f64>,
     dh: Vector3<f64>,
-    accept: f64,
+    /// The residual within which a hit is accepted.
+    acceptance: Acceptance,
     target: f64,
     iterations: u32,
     /// Hits at or below this ray parameter are the origin's own.
@@ -973,9 +973,9 @@ fn polish(patch: &Patch, k: usize, cols: usize, f: &Frame, cell: Cell) -> Option
         // ray's origin on the surface), however grazing.
         let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
         let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
-        let own =
-            along / f.dn - f.t_min <= f.accept / (f.dn * if cos.is_nan() { 1.0 } else { cos });
-        if off <= f.accept && !own {
+        let own = along / f.dn - f.t_min
+            <= f.acceptance.distance / (f.dn * if cos.is_nan() { 1.0 } else { cos });
+        if f.acceptance.accepts(off) && !own {
             return Some(PatchHit {
                 patch: k,
                 t: along / f.dn,

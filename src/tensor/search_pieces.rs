@@ -197,8 +197,8 @@ fn quarters(patch: &Patch, (p, q): (usize, usize)) -> [Patch; 4] {
 
 #[cfg(test)]
 mod tests {
-    use crate::tensor::patch::Patch;
     use super::*;
+    use crate::tensor::patch::Patch;
     use nalgebra::{Point3, Vector3};
 
     /// The point of a homogeneous net at `(s, t)` by the tensor Bernstein
