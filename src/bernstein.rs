@@ -284,6 +284,22 @@ pub fn subdivide<T: Coefficient>(c: &[T], t: f64, left: &mut [T], right: &mut [T
     true
 }
 
+/// Replaces the Bernstein coefficients `c` on `[0, 1]` by those of the same
+/// polynomial on `[a, b] ⊆ [0, 1]` (two de Casteljau subdivisions).
+pub(crate) fn restrict<T: Coefficient>(c: &mut [T], (a, b): (f64, f64)) {
+    let n = c.len();
+    let mut left = c.to_vec();
+    let mut right = c.to_vec();
+    if b < 1.0 {
+        subdivide(c, b, &mut left, &mut right);
+        c.copy_from_slice(&left);
+    }
+    if a > 0.0 && b > 0.0 {
+        subdivide(c, (a / b).min(1.0), &mut left, &mut right);
+        c.copy_from_slice(&right);
+    }
+    debug_assert_eq!(c.len(), n);
+}
 /// Reference evaluator: the Bernstein sum `Σ cᵢ Bᵢⁿ(t)` computed term by term.
 ///
 /// Slower and (near the ends, for high degree) less accurate than de Casteljau;

@@ -25,7 +25,7 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// The most vertices [`Revolution::tessellate`] and the tensor surfaces'
+    /// The most vertices [`Revolution::tessellate`](crate::Revolution::tessellate) and the tensor surfaces'
     /// `tessellate` make (`2²⁴`; with
     /// normals, parameters and about two triangles per vertex, about 1.4 GB);
     /// tolerances that would need more are refused.

@@ -5,9 +5,9 @@
 //! A ray meets `S(u, θ)` where the ray point at height `y(u)` lies at
 //! distance `|x(u)|` from the axis: the angle is eliminated and each Bézier
 //! span of the profile gives one polynomial in `u` whose roots are all
-//! isolated ([`span_table`]). Profiles without spans are approximated by
+//! isolated (`span_table.rs`, `span_search.rs`). Profiles without spans are approximated by
 //! cubic pieces within a certified deviation and the hits refined on the
-//! profile itself ([`profile_approximation`], [`profile_refine`]).
+//! profile itself (`profile_approximation.rs`, `profile_refine.rs`).
 
 mod candidates;
 #[cfg(test)]

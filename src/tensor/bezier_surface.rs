@@ -1,11 +1,13 @@
 //! Tensor-product Bézier surfaces.
 
-use super::patch::{Patch, PatchTable, flatten_points, rows_and_columns};
+use super::control_net::{flatten_points, rows_and_columns};
+use super::patch::Patch;
+use super::patch_table::PatchTable;
 use super::tessellate::tessellate_patches;
-use crate::Error;
 use crate::Mesh;
 use crate::curve::{Homogeneous, check_derivatives};
-use nalgebra::{Point3, Vector3};
+use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
+use nalgebra::{Point3, Unit, Vector3};
 
 /// A tensor-product Bézier surface
 /// `S(u, v) = Σᵢ Σⱼ Pᵢⱼ Bᵢᵐ(u) Bⱼⁿ(v)` on `[0, 1]²`, of degrees
@@ -62,6 +64,23 @@ pub struct BezierSurface {
 }
 
 impl BezierSurface {
+    /// The same surface with the given intersection accuracy (the default
+    /// is full double precision), [clamped](Tolerance::clamped) into the
+    /// valid range: a point of the surface within `tolerance.relative` of
+    /// its size (at least `10⁻¹²`) off the ray counts as a hit (so a ray
+    /// passing that close to a silhouette touches it), and boxes whose image
+    /// is that small are decided at once. The search is certified and every
+    /// hit polished to full precision at every tolerance.
+    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.table.tolerance = tolerance.clamped();
+        self
+    }
+
+    /// The intersection accuracy.
+    pub fn tolerance(&self) -> &Tolerance {
+        &self.table.tolerance
+    }
+
     /// The Bézier surface of the control grid `points[i][j]` (`i` along
     /// `u`), of degrees `(rows − 1, cols − 1)`, on `[0, 1]²`.
     ///
@@ -159,4 +178,45 @@ impl BezierSurface {
     }
 }
 
-super::patch::tensor_surface_traits!(BezierSurface, table);
+impl Surface for BezierSurface {
+    fn domain(&self) -> [(f64, f64); 2] {
+        self.table.domain()
+    }
+
+    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        self.table.eval(u, v)
+    }
+
+    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        self.table.partials(u, v)
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        self.table.normal(u, v)
+    }
+}
+
+impl PatchBounds for BezierSurface {
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        self.table.bound(u, v)
+    }
+}
+
+/// Ray intersection by Bézier clipping and subdivision of the ray's two
+/// plane distances on each Bézier patch (the patches cut once into up to 16
+/// nearly bilinear pieces, visited through a hierarchy over their boxes): a
+/// box is dropped or shrunk only where a certain sign rules a hit out; a box
+/// that Krawczyk's test proves to hold one root, or one below `2⁻¹⁴` a side,
+/// is finished by Newton's method, and only points on the surface to the
+/// surface's tolerance (`with_tolerance`) are hits. `Hit::uv` is `(u, v)` in
+/// the surface's parameters; the normal follows `∂S/∂u × ∂S/∂v` (the limit
+/// at collapsed edges).
+impl Intersect for BezierSurface {
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.table.hit(ray, t_min, t_max)
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.table.bounds()
+    }
+}

@@ -2,18 +2,17 @@
 //! rational ones (knot refinement into Bézier patches, knot insertion).
 
 use super::BezierSurface;
-use super::patch::{
-    Patch, PatchTable, check_rational_partials, flatten_points, flatten_weights, rows_and_columns,
-    weight_scale,
-};
+use super::control_net::{flatten_points, flatten_weights, rows_and_columns, weight_scale};
+use super::patch::Patch;
+use super::patch_table::{PatchTable, check_rational_partials};
 use super::tessellate::tessellate_patches;
-use crate::Error;
 use crate::Mesh;
 use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{
     Homogeneous, boehm_insert, check_derivative_points, knot_to_insert, validate_knots,
 };
-use nalgebra::{Point1, Point3, Vector3};
+use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
+use nalgebra::{Point1, Point3, Unit, Vector3};
 
 /// A tensor-product B-spline surface
 /// `S(u, v) = Σᵢ Σⱼ Pᵢⱼ Nᵢ,ₚ(u) Nⱼ,q(v)` of degrees `(p, q)`, knot vectors
@@ -73,6 +72,23 @@ pub struct BezierPatch {
 }
 
 impl BSplineSurface {
+    /// The same surface with the given intersection accuracy (the default
+    /// is full double precision), [clamped](Tolerance::clamped) into the
+    /// valid range: a point of the surface within `tolerance.relative` of
+    /// its size (at least `10⁻¹²`) off the ray counts as a hit (so a ray
+    /// passing that close to a silhouette touches it), and boxes whose image
+    /// is that small are decided at once. The search is certified and every
+    /// hit polished to full precision at every tolerance.
+    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.core.table.tolerance = tolerance.clamped();
+        self
+    }
+
+    /// The intersection accuracy.
+    pub fn tolerance(&self) -> &Tolerance {
+        &self.core.table.tolerance
+    }
+
     /// A B-spline surface of degrees `(p, q)`, knot vectors `(U, V)` and
     /// control grid `points[i][j]`.
     ///
@@ -197,7 +213,48 @@ impl BSplineSurface {
     }
 }
 
-super::patch::tensor_surface_traits!(BSplineSurface, core.table);
+impl Surface for BSplineSurface {
+    fn domain(&self) -> [(f64, f64); 2] {
+        self.core.table.domain()
+    }
+
+    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        self.core.table.eval(u, v)
+    }
+
+    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        self.core.table.partials(u, v)
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        self.core.table.normal(u, v)
+    }
+}
+
+impl PatchBounds for BSplineSurface {
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        self.core.table.bound(u, v)
+    }
+}
+
+/// Ray intersection by Bézier clipping and subdivision of the ray's two
+/// plane distances on each Bézier patch (the patches cut once into up to 16
+/// nearly bilinear pieces, visited through a hierarchy over their boxes): a
+/// box is dropped or shrunk only where a certain sign rules a hit out; a box
+/// that Krawczyk's test proves to hold one root, or one below `2⁻¹⁴` a side,
+/// is finished by Newton's method, and only points on the surface to the
+/// surface's tolerance (`with_tolerance`) are hits. `Hit::uv` is `(u, v)` in
+/// the surface's parameters; the normal follows `∂S/∂u × ∂S/∂v` (the limit
+/// at collapsed edges).
+impl Intersect for BSplineSurface {
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.core.table.hit(ray, t_min, t_max)
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.core.table.bounds()
+    }
+}
 
 /// A (rational or polynomial) tensor-product spline: the data and the
 /// Bézier patch table shared by [`BSplineSurface`] and

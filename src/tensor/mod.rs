@@ -4,14 +4,16 @@
 //! tessellation.
 //!
 //! Every kind is held as a table of homogeneous Bézier patches
-//! ([`PatchTable`](patch_table::PatchTable)); evaluation, bounds, the ray
-//! search and tessellation all work on that table.
+//! (`patch_table.rs`); evaluation, bounds, the ray search (`search.rs`)
+//! and tessellation all work on that table.
 
 mod bezier_patches;
 mod bezier_surface;
 mod bspline_surface;
+mod control_net;
 mod nurbs_surface;
 mod patch;
+mod patch_table;
 mod search;
 mod search_pieces;
 mod tessellate;

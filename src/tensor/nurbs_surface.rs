@@ -3,9 +3,9 @@
 use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
 use super::tessellate::tessellate_patches;
-use crate::Error;
 use crate::Mesh;
-use nalgebra::{Point3, Vector3};
+use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
+use nalgebra::{Point3, Unit, Vector3};
 
 /// A NURBS surface
 /// `S(u, v) = Σᵢⱼ wᵢⱼPᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v) / Σᵢⱼ wᵢⱼ Nᵢ,ₚ(u)Nⱼ,q(v)` with
@@ -69,6 +69,23 @@ pub struct RationalBezierPatch {
 }
 
 impl NurbsSurface {
+    /// The same surface with the given intersection accuracy (the default
+    /// is full double precision), [clamped](Tolerance::clamped) into the
+    /// valid range: a point of the surface within `tolerance.relative` of
+    /// its size (at least `10⁻¹²`) off the ray counts as a hit (so a ray
+    /// passing that close to a silhouette touches it), and boxes whose image
+    /// is that small are decided at once. The search is certified and every
+    /// hit polished to full precision at every tolerance.
+    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.core.table.tolerance = tolerance.clamped();
+        self
+    }
+
+    /// The intersection accuracy.
+    pub fn tolerance(&self) -> &Tolerance {
+        &self.core.table.tolerance
+    }
+
     /// A NURBS surface of degrees `(p, q)`, knot vectors `(U, V)`, control
     /// grid `points[i][j]` and weights `weights[i][j]`.
     ///
@@ -181,4 +198,45 @@ impl From<BSplineSurface> for NurbsSurface {
     }
 }
 
-super::patch::tensor_surface_traits!(NurbsSurface, core.table);
+impl Surface for NurbsSurface {
+    fn domain(&self) -> [(f64, f64); 2] {
+        self.core.table.domain()
+    }
+
+    fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        self.core.table.eval(u, v)
+    }
+
+    fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        self.core.table.partials(u, v)
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        self.core.table.normal(u, v)
+    }
+}
+
+impl PatchBounds for NurbsSurface {
+    fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        self.core.table.bound(u, v)
+    }
+}
+
+/// Ray intersection by Bézier clipping and subdivision of the ray's two
+/// plane distances on each Bézier patch (the patches cut once into up to 16
+/// nearly bilinear pieces, visited through a hierarchy over their boxes): a
+/// box is dropped or shrunk only where a certain sign rules a hit out; a box
+/// that Krawczyk's test proves to hold one root, or one below `2⁻¹⁴` a side,
+/// is finished by Newton's method, and only points on the surface to the
+/// surface's tolerance (`with_tolerance`) are hits. `Hit::uv` is `(u, v)` in
+/// the surface's parameters; the normal follows `∂S/∂u × ∂S/∂v` (the limit
+/// at collapsed edges).
+impl Intersect for NurbsSurface {
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.core.table.hit(ray, t_min, t_max)
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.core.table.bounds()
+    }
+}

@@ -80,7 +80,8 @@
 //! patch's interior vertices are its own). Edges collapsed to a
 //! point are not matched (every one of their vertices is that point).
 
-use super::patch::{Patch, PatchTable, tensor_jet};
+use super::patch::{Patch, tensor_jet};
+use super::patch_table::PatchTable;
 use crate::Error;
 use crate::Mesh;
 use crate::bernstein::{self, Coefficient};

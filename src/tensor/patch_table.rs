@@ -1,0 +1,358 @@
+//! The shared core of the tensor-product surfaces: a table of rational
+//! Bézier patches on a grid of breakpoints, with evaluation, the limit
+//! normal at collapsed edges, convex-hull bounds of sub-rectangles and the
+//! ray search (its pieces built by the first ray).
+
+use super::patch::{Jet, Patch, project_jet, rounding_pad, tensor_jet};
+use super::search::{PatchSet, intersect};
+use super::search_pieces::SearchPieces;
+use crate::bernstein::restrict;
+use crate::curve::{Homogeneous, unit_direction};
+use crate::{Aabb, Error, Hit, Ray, Tolerance};
+use nalgebra::{Point3, Unit, Vector3};
+use std::sync::OnceLock;
+
+/// The Bézier patches of a surface, one per non-empty knot rectangle, on a
+/// grid of breakpoints.
+#[derive(Debug, Clone)]
+pub(crate) struct PatchTable {
+    /// Degrees `(p, q)`.
+    pub(crate) degrees: (usize, usize),
+    /// The distinct breakpoints in `u`, increasing, at least two.
+    pub(crate) u_breaks: Vec<f64>,
+    /// The distinct breakpoints in `v`.
+    pub(crate) v_breaks: Vec<f64>,
+    /// Patch `(a, b)` (the `a`-th u-span, `b`-th v-span) at
+    /// `a·(v_breaks.len() − 1) + b`.
+    pub(crate) patches: Vec<Patch>,
+    /// The largest extent of the box of the projected control points
+    /// (the scale of the normal's degeneracy test), computed once.
+    extent: f64,
+    /// A box around the control points, padded for rounding as the
+    /// search's own boxes are.
+    bounds: Aabb,
+    /// The patches cut into pieces, with the hierarchy over them, for ray
+    /// intersection: built by the first ray, so that a surface that is
+    /// never intersected (or only as part of a [`BezierPatches`] model,
+    /// which has its own) does not hold them.
+    ///
+    /// [`BezierPatches`]: crate::BezierPatches
+    search: OnceLock<SearchPieces>,
+    /// The intersection accuracy.
+    pub(crate) tolerance: Tolerance,
+}
+/// The index `k` of the span `[breaks[k], breaks[k + 1])` holding `x`
+/// (clamped into the breakpoints; the last breakpoint belongs to the last
+/// span).
+fn locate(breaks: &[f64], x: f64) -> usize {
+    let last = breaks.len() - 2;
+    // Number of breakpoints ≤ x, minus one.
+    let k = breaks.partition_point(|&b| b <= x);
+    k.saturating_sub(1).min(last)
+}
+/// Equal when the surfaces are: the cached search pieces do not count.
+impl PartialEq for PatchTable {
+    fn eq(&self, other: &Self) -> bool {
+        self.degrees == other.degrees
+            && self.u_breaks == other.u_breaks
+            && self.v_breaks == other.v_breaks
+            && self.patches == other.patches
+            && self.tolerance == other.tolerance
+    }
+}
+impl PatchTable {
+    /// The table of `patches` on the breakpoint grid (see the fields).
+    pub(crate) fn new(
+        degrees: (usize, usize),
+        u_breaks: Vec<f64>,
+        v_breaks: Vec<f64>,
+        patches: Vec<Patch>,
+    ) -> Self {
+        let b = patches
+            .iter()
+            .fold(Aabb::EMPTY, |b, p| b.union(&p.net_box()));
+        let scale = b.min.coords.amax().max(b.max.coords.amax());
+        PatchTable {
+            degrees,
+            u_breaks,
+            v_breaks,
+            patches,
+            extent: b.extent().amax(),
+            bounds: b.expand(rounding_pad(scale)),
+            search: OnceLock::new(),
+            tolerance: Tolerance::default(),
+        }
+    }
+
+    /// The parameter rectangle.
+    pub(crate) fn domain(&self) -> [(f64, f64); 2] {
+        [
+            (self.u_breaks[0], self.u_breaks[self.u_breaks.len() - 1]),
+            (self.v_breaks[0], self.v_breaks[self.v_breaks.len() - 1]),
+        ]
+    }
+
+    /// `(u, v)` clamped into the domain, NaN to its start.
+    pub(crate) fn clamp(&self, u: f64, v: f64) -> (f64, f64) {
+        let [du, dv] = self.domain();
+        (
+            crate::curve::clamp_to_domain(u, du),
+            crate::curve::clamp_to_domain(v, dv),
+        )
+    }
+
+    /// The jet of the surface at `(u, v)` (clamped), orders `≤ order ≤ 2`,
+    /// with respect to the surface's own parameters.
+    pub(crate) fn jet(&self, u: f64, v: f64, order: usize) -> Jet<Vector3<f64>> {
+        let (u, v) = self.clamp(u, v);
+        let (a, b) = (locate(&self.u_breaks, u), locate(&self.v_breaks, v));
+        let patch = &self.patches[a * (self.v_breaks.len() - 1) + b];
+        let (wu, wv) = (patch.u.1 - patch.u.0, patch.v.1 - patch.v.0);
+        let s = ((u - patch.u.0) / wu).clamp(0.0, 1.0);
+        let t = ((v - patch.v.0) / wv).clamp(0.0, 1.0);
+        let h = tensor_jet(&patch.net, self.degrees.1 + 1, s, t, order);
+        let mut d = project_jet(&h, order);
+        // Chain rule for s = (u − u₀)/wu, t = (v − v₀)/wv.
+        for (a, row) in d.iter_mut().enumerate() {
+            for (b, x) in row.iter_mut().enumerate() {
+                if a + b >= 1 && a + b <= order {
+                    *x /= wu.powi(a as i32) * wv.powi(b as i32);
+                }
+            }
+        }
+        d
+    }
+
+    /// The nearest hit of `ray` with `t_min < t < t_max` (see
+    /// [`crate::ray::patch`]): the point is `S(u, v)`, the normal follows
+    /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; facing the ray where
+    /// no tangent plane exists).
+    pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
+        found.to_hit(
+            ray,
+            self.eval(found.u, found.v),
+            self.normal(found.u, found.v),
+        )
+    }
+
+    /// What the ray–patch search runs over.
+    pub(crate) fn search_set(&self) -> PatchSet<'_> {
+        self.search
+            .get_or_init(|| SearchPieces::new(&self.patches, self.degrees))
+            .set()
+    }
+
+    /// A box around the surface (its control points, padded for rounding).
+    pub(crate) fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// `S(u, v)`.
+    pub(crate) fn eval(&self, u: f64, v: f64) -> Point3<f64> {
+        Point3::from(self.jet(u, v, 0)[0][0])
+    }
+
+    /// `(∂S/∂u, ∂S/∂v)`.
+    pub(crate) fn partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>) {
+        let d = self.jet(u, v, 1);
+        (d[1][0], d[0][1])
+    }
+
+    /// The unit normal along `∂S/∂u × ∂S/∂v`, with the limit where that
+    /// vanishes (see [`BezierSurface`](crate::BezierSurface)'s docs for the
+    /// rule).
+    pub(crate) fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
+        let (u, v) = self.clamp(u, v);
+        let first = self.jet(u, v, 1);
+        let (su, sv) = (first[1][0], first[0][1]);
+        let n = su.cross(&sv);
+        // The typical size of a first derivative: net extent over the
+        // parameter widths, times the degree.
+        let [du, dv] = self.domain();
+        let extent = self.extent.max(f64::MIN_POSITIVE);
+        let typical = extent * (self.degrees.0.max(self.degrees.1).max(1) as f64)
+            / (du.1 - du.0).min(dv.1 - dv.0);
+        let negligible = (1e-7 * typical) * (1e-7 * typical);
+        if n.norm() > negligible {
+            return unit_direction(n);
+        }
+        let d = self.jet(u, v, 2);
+        // N(u + h·du, v + h·dv) = N + h·N₁ + O(h²) toward the domain's
+        // centre, N₁ = du(S_uu×S_v + S_u×S_uv) + dv(S_uv×S_v + S_u×S_vv).
+        let dir_u = (0.5 * (du.0 + du.1) - u) / (du.1 - du.0);
+        let dir_v = (0.5 * (dv.0 + dv.1) - v) / (dv.1 - dv.0);
+        let n1 = (d[2][0].cross(&sv) + su.cross(&d[1][1])) * dir_u
+            + (d[1][1].cross(&sv) + su.cross(&d[0][2])) * dir_v;
+        let wide = (du.1 - du.0).max(dv.1 - dv.0);
+        if n1.norm() * wide > negligible {
+            let n1 = unit_direction(n1)?;
+            // At a collapsed edge the limit is a tangent plane only if every
+            // direction leaving the edge lies in it (else a cone point).
+            return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
+        }
+        // Both orders vanish (a corner where two edges collapse): the
+        // normals at steps h = 10⁻³ … 10⁻⁸ (of the domain) inside along the
+        // direction, where the cross product is clearly resolved (sine of
+        // the angle between the partials ≥ 10⁻⁶); the last of them if they
+        // converge (successive ones within 10⁻³), else no tangent plane.
+        let mut last: Option<Unit<Vector3<f64>>> = None;
+        let mut converged = false;
+        for k in 3..=8 {
+            let h = 10f64.powi(-k);
+            let (su, sv) =
+                self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
+            let n = su.cross(&sv);
+            let resolved = n.norm() > 1e-6 * su.norm() * sv.norm();
+            if !resolved {
+                break;
+            }
+            let Some(n) = unit_direction(n) else {
+                break;
+            };
+            if let Some(previous) = last {
+                converged = (n.into_inner() - previous.into_inner()).norm() < 1e-3;
+            }
+            last = Some(n);
+        }
+        if converged { last } else { None }
+    }
+
+    /// At a point `(u, v)` on an edge of the domain where that edge is
+    /// collapsed (the partial along it vanishes), whether the first
+    /// differences of the control net leaving the edge (they span the
+    /// directions `∂S/∂n` along the whole edge, with positive factors) are
+    /// all perpendicular to `n` within `10⁻⁷` relative: the edge point then
+    /// has the tangent plane `⟂ n`; otherwise it is a cone point. `true`
+    /// off the edges and on edges that do not collapse.
+    fn edge_is_flat(
+        &self,
+        u: f64,
+        v: f64,
+        su: Vector3<f64>,
+        sv: Vector3<f64>,
+        n: &Unit<Vector3<f64>>,
+    ) -> bool {
+        let [du, dv] = self.domain();
+        let (p, q) = self.degrees;
+        let cols = q + 1;
+        let (nu, nv) = (self.u_breaks.len() - 1, self.v_breaks.len() - 1);
+        let point = |h: &Homogeneous<3>| h.wp / h.w;
+        let tiny = |x: Vector3<f64>, y: Vector3<f64>| x.norm() <= 1e-7 * y.norm();
+        let flat = |d: Vector3<f64>| n.dot(&d).abs() <= 1e-7 * d.norm();
+        let mut ok = true;
+        if (u == du.0 || u == du.1) && tiny(sv, su) && p >= 1 {
+            let (a, i0, i1) = if u == du.0 {
+                (0, 0, 1)
+            } else {
+                (nu - 1, p, p - 1)
+            };
+            for b in 0..nv {
+                let net = &self.patches[a * nv + b].net;
+                for j in 0..cols {
+                    ok &= flat(point(&net[i1 * cols + j]) - point(&net[i0 * cols + j]));
+                }
+            }
+        }
+        if (v == dv.0 || v == dv.1) && tiny(su, sv) && q >= 1 {
+            let (b, j0, j1) = if v == dv.0 {
+                (0, 0, 1)
+            } else {
+                (nv - 1, q, q - 1)
+            };
+            for a in 0..nu {
+                let net = &self.patches[a * nv + b].net;
+                for i in 0..=p {
+                    ok &= flat(point(&net[i * cols + j1]) - point(&net[i * cols + j0]));
+                }
+            }
+        }
+        ok
+    }
+
+    /// A box containing `S([u₀, u₁] × [v₀, v₁])`: the union over the patches
+    /// the rectangle meets of the box of the sub-patch's projected control
+    /// net (de Casteljau subdivision in homogeneous coordinates; the convex
+    /// hull property with positive weights), padded for rounding.
+    pub(crate) fn bound(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
+        let (u0, v0) = self.clamp(u.0.min(u.1), v.0.min(v.1));
+        let (u1, v1) = self.clamp(u.0.max(u.1), v.0.max(v.1));
+        let (a0, a1) = (locate(&self.u_breaks, u0), locate(&self.v_breaks, v0));
+        let (b0, b1) = (locate(&self.u_breaks, u1), locate(&self.v_breaks, v1));
+        let (p, q) = self.degrees;
+        let cols = q + 1;
+        let mut boxed = Aabb::EMPTY;
+        let mut magnitude = 0.0_f64;
+        for a in a0..=b0 {
+            for b in a1..=b1 {
+                let patch = &self.patches[a * (self.v_breaks.len() - 1) + b];
+                let local = |x: f64, (lo, hi): (f64, f64)| ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+                let s = (local(u0, patch.u), local(u1, patch.u));
+                let t = (local(v0, patch.v), local(v1, patch.v));
+                let mut net = patch.net.clone();
+                // Rows (in t), then columns (in s).
+                let mut line = Vec::with_capacity(p.max(q) + 1);
+                for i in 0..=p {
+                    line.clear();
+                    line.extend_from_slice(&net[i * cols..(i + 1) * cols]);
+                    restrict(&mut line, t);
+                    net[i * cols..(i + 1) * cols].copy_from_slice(&line);
+                }
+                for j in 0..cols {
+                    line.clear();
+                    line.extend((0..=p).map(|i| net[i * cols + j]));
+                    restrict(&mut line, s);
+                    for i in 0..=p {
+                        net[i * cols + j] = line[i];
+                    }
+                }
+                for h in &net {
+                    let x = Point3::from(h.wp / h.w);
+                    magnitude = magnitude.max(x.coords.amax());
+                    boxed = boxed.include(&x);
+                }
+            }
+        }
+        let pad = 16.0 * (p + q + 2) as f64 * f64::EPSILON * magnitude;
+        boxed.expand(pad)
+    }
+}
+/// Checks that the first partials of every rational patch stay within
+/// [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE), as the rational curves check
+/// their pieces: along each row (in `v`) and column (in `u`) of a patch net,
+/// `|S′| ≤ (max|A′| + max|w′|·max|P|)/min w` with the hodographs bounded by
+/// the nets' differences times `degree / width` (convex hull property).
+///
+/// # Errors
+/// [`Error::DerivativeOverflow`] (order 1).
+pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
+    let (p, q) = table.degrees;
+    let cols = q + 1;
+    for patch in &table.patches {
+        let net = &patch.net;
+        let w_min = net.iter().fold(f64::INFINITY, |m, h| m.min(h.w));
+        let p_max = net.iter().fold(0.0_f64, |m, h| m.max(h.wp.amax() / h.w));
+        // (degree / width, index step to the neighbour, along u?).
+        let along = [
+            ((p as f64) / (patch.u.1 - patch.u.0), cols, true),
+            ((q as f64) / (patch.v.1 - patch.v.0), 1, false),
+        ];
+        for (factor, step, in_u) in along {
+            let (mut a1, mut w1) = (0.0_f64, 0.0_f64);
+            for k in 0..net.len() {
+                let neighbour = k + step;
+                let paired = in_u || (k % cols) + 1 < cols;
+                if neighbour < net.len() && paired {
+                    a1 = a1.max((net[neighbour].wp - net[k].wp).amax());
+                    w1 = w1.max((net[neighbour].w - net[k].w).abs());
+                }
+            }
+            let bound = (a1 * factor + w1 * factor * p_max) / w_min;
+            let within = bound <= crate::MAX_DERIVATIVE;
+            if !within {
+                return Err(Error::DerivativeOverflow { order: 1 });
+            }
+        }
+    }
+    Ok(())
+}
