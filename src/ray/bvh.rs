@@ -21,7 +21,7 @@ use nalgebra::Point3;
 const SAH_DEPTH: usize = 40;
 
 /// Nodes the traversal stack holds: one per level.
-const STACK: usize = SAH_DEPTH + 64 + 2;
+const TRAVERSAL_STACK: usize = SAH_DEPTH + 64 + 2;
 
 /// One node: a leaf holds item `order[first]`; an inner node's children
 /// are nodes `first` and `first + 1`.
@@ -116,7 +116,7 @@ impl Bvh {
         let Some(enter) = slab.enter(&self.nodes[0].bounds, lo, best) else {
             return;
         };
-        let mut stack = [(0_u32, 0.0_f64); STACK];
+        let mut stack = [(0_u32, 0.0_f64); TRAVERSAL_STACK];
         stack[0] = (0, enter);
         let mut len = 1;
         while len > 0 {

@@ -138,12 +138,12 @@ pub const MAX_DEPTH: u32 = 16;
 
 /// Entries of the traversal stack: at most one pending sibling per level plus
 /// the node being expanded.
-const STACK: usize = MAX_DEPTH as usize + 1;
+const TRAVERSAL_STACK: usize = MAX_DEPTH as usize + 1;
 
-/// One node of the patch tree: a parameter rectangle and a conservative box
-/// of its image.
+/// One node of the parameter tree: a parameter rectangle and a conservative
+/// box of its image.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Patch {
+pub struct ParameterBox {
     /// The first parameter interval `(u₀, u₁)`.
     pub u: (f64, f64),
     /// The second parameter interval `(v₀, v₁)`.
@@ -322,7 +322,7 @@ pub struct NewtonIntersector<S> {
     surface: S,
     /// Complete binary tree in heap order: the children of node `i` are
     /// `2i + 1` and `2i + 2`; the last `2^depth` nodes are the leaves.
-    nodes: Vec<Patch>,
+    nodes: Vec<ParameterBox>,
     depth: u32,
     tolerance: Tolerance,
     domain: [(f64, f64); 2],
@@ -353,14 +353,14 @@ impl<S: PatchBounds> NewtonIntersector<S> {
         let periodic = surface.periodic();
         let count = (1usize << (depth + 1)) - 1;
         let first_leaf = (1usize << depth) - 1;
-        let empty = Patch {
+        let empty = ParameterBox {
             u: domain[0],
             v: domain[1],
             bounds: Aabb::EMPTY,
         };
         let mut nodes = vec![empty; count];
         for i in 0..first_leaf {
-            let Patch { u, v, .. } = nodes[i];
+            let ParameterBox { u, v, .. } = nodes[i];
             let (left, right) = if split_u(&surface, u, v) {
                 let m = 0.5 * (u.0 + u.1);
                 (((u.0, m), v), ((m, u.1), v))
@@ -368,12 +368,12 @@ impl<S: PatchBounds> NewtonIntersector<S> {
                 let m = 0.5 * (v.0 + v.1);
                 ((u, (v.0, m)), (u, (m, v.1)))
             };
-            nodes[2 * i + 1] = Patch {
+            nodes[2 * i + 1] = ParameterBox {
                 u: left.0,
                 v: left.1,
                 bounds: Aabb::EMPTY,
             };
-            nodes[2 * i + 2] = Patch {
+            nodes[2 * i + 2] = ParameterBox {
                 u: right.0,
                 v: right.1,
                 bounds: Aabb::EMPTY,
@@ -432,7 +432,7 @@ impl<S: PatchBounds> NewtonIntersector<S> {
 
     /// The leaves of the patch tree (left to right in the tree): their
     /// rectangles and conservative boxes.
-    pub fn leaves(&self) -> &[Patch] {
+    pub fn leaves(&self) -> &[ParameterBox] {
         &self.nodes[(1usize << self.depth) - 1..]
     }
 
@@ -519,8 +519,8 @@ impl<S: PatchBounds> NewtonIntersector<S> {
         let mut best: Option<NewtonRun> = None;
         let first_leaf = (1usize << self.depth) - 1;
 
-        // (node, entry, exit); see STACK for the size bound.
-        let mut stack = [(0_u32, 0.0_f64, 0.0_f64); STACK];
+        // (node, entry, exit); see TRAVERSAL_STACK for the size bound.
+        let mut stack = [(0_u32, 0.0_f64, 0.0_f64); TRAVERSAL_STACK];
         let mut len = 0;
         rec.visit();
         if let Some((lo, hi)) = self.nodes[0].bounds.clip(ray, t_floor, t_best) {

@@ -10,7 +10,10 @@
 mod bezier_patches;
 mod bezier_surface;
 mod bspline_surface;
+mod clip;
 mod control_net;
+mod krawczyk;
+mod newton_polish;
 mod nurbs_surface;
 mod patch;
 mod patch_table;

@@ -10,7 +10,7 @@
 //! hits come out in the surface's own parameters.
 //!
 //! The depth is one for the whole surface: the least, up to
-//! [`MAX_DEPTH`], at which every piece is flat, its control net within
+//! [`MAX_CUTS`], at which every piece is flat, its control net within
 //! [`FLATNESS`] of its size from the bilinear interpolation of its
 //! corners. One depth for all keeps neighbouring pieces' common edges
 //! identical: a cut at ½ gives the two halves the same middle control
@@ -28,9 +28,9 @@ use crate::bernstein::subdivide;
 use crate::curve::Homogeneous;
 use crate::ray::bvh::Bvh;
 
-/// The most times a patch is cut in each direction (up to `4^MAX_DEPTH`
+/// The most times a patch is cut in each direction (up to `4^MAX_CUTS`
 /// pieces per patch).
-pub(crate) const MAX_DEPTH: usize = 2;
+pub(crate) const MAX_CUTS: usize = 2;
 
 /// A piece is flat when no control point lies farther than this fraction
 /// of the piece's box diagonal from the bilinear interpolation of its four
@@ -57,7 +57,7 @@ impl SearchPieces {
         let mut pieces: Vec<Patch> = patches.to_vec();
         let mut owners: Vec<u32> = (0..patches.len() as u32).collect();
         let mut depth = 0;
-        while depth < MAX_DEPTH && !pieces.iter().all(|p| is_flat(p, degrees)) {
+        while depth < MAX_CUTS && !pieces.iter().all(|p| is_flat(p, degrees)) {
             let mut finer = Vec::with_capacity(4 * pieces.len());
             let mut finer_owners = Vec::with_capacity(4 * pieces.len());
             for (piece, &owner) in pieces.iter().zip(&owners) {
@@ -144,7 +144,7 @@ fn is_flat(patch: &Patch, (p, q): (usize, usize)) -> bool {
         }
     }
     // NaN-safe: a net that is not finite is never called flat (and is not
-    // cut further than MAX_DEPTH either).
+    // cut further than MAX_CUTS either).
     deviation <= FLATNESS * (hi - lo).norm()
 }
 
@@ -236,8 +236,8 @@ mod tests {
         let degrees = (3, 2);
         let patch = wavy(3, 2, 0.8);
         let pieces = SearchPieces::new(std::slice::from_ref(&patch), degrees);
-        assert_eq!(pieces.depth(), MAX_DEPTH, "a strongly bent patch is cut");
-        assert_eq!(pieces.pieces().len(), 4usize.pow(MAX_DEPTH as u32));
+        assert_eq!(pieces.depth(), MAX_CUTS, "a strongly bent patch is cut");
+        assert_eq!(pieces.pieces().len(), 4usize.pow(MAX_CUTS as u32));
         let (du, dv) = (patch.u.1 - patch.u.0, patch.v.1 - patch.v.0);
         let mut area = 0.0;
         for (k, piece) in pieces.pieces().iter().enumerate() {

@@ -1,0 +1,106 @@
+//! The finish of the patch search: Newton's method on the ray's two plane
+//! distances from a box, and the test that its point is a hit.
+
+use super::patch::{Patch, tensor_jet};
+use super::search::{PatchHit, SearchBox};
+use crate::ray::acceptance::Acceptance;
+use nalgebra::Vector3;
+
+/// How far outside its patch (in the patch's parameters) Newton may land and
+/// still count: rounding only.
+pub(super) const SLACK: f64 = 1e-9;
+
+/// The ray in the frame the search uses, and the Newton settings.
+pub(super) struct Frame {
+    pub(super) o: Vector3<f64>,
+    pub(super) dn: f64,
+    pub(super) e1: Vector3<f64>,
+    pub(super) e2: Vector3<f64>,
+    pub(super) dh: Vector3<f64>,
+    /// The residual within which a hit is accepted.
+    pub(super) acceptance: Acceptance,
+    pub(super) target: f64,
+    pub(super) iterations: u32,
+    /// Hits at or below this ray parameter are the origin's own.
+    pub(super) t_floor: f64,
+    /// The ray parameter searched from.
+    pub(super) t_min: f64,
+}
+/// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
+/// `k`, with `cols` control points a row) from the
+/// centre of `cell` (then its corners); the hit if a start converges to a
+/// point of the patch within the acceptance.
+pub(super) fn polish(
+    patch: &Patch,
+    k: usize,
+    cols: usize,
+    f: &Frame,
+    cell: SearchBox,
+) -> Option<PatchHit> {
+    let starts = [
+        (0.5 * (cell.s.0 + cell.s.1), 0.5 * (cell.t.0 + cell.t.1)),
+        (cell.s.0, cell.t.0),
+        (cell.s.1, cell.t.1),
+        (cell.s.0, cell.t.1),
+        (cell.s.1, cell.t.0),
+    ];
+    for (s0, t0) in starts {
+        let (mut s, mut t) = (s0, t0);
+        // The jet at the last point evaluated, if Newton stopped there.
+        let mut last = None;
+        for _ in 0..f.iterations.max(8) {
+            let (sc, tc) = (s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5));
+            let jet = tensor_jet(&patch.net, cols, sc, tc, 1);
+            let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
+            let x = h.wp / h.w;
+            let xs = (hs.wp - x * hs.w) / h.w;
+            let xt = (ht.wp - x * ht.w) / h.w;
+            let r = x - f.o;
+            let (fa, fb) = (f.e1.dot(&r), f.e2.dot(&r));
+            let (j00, j01, j10, j11) = (f.e1.dot(&xs), f.e1.dot(&xt), f.e2.dot(&xs), f.e2.dot(&xt));
+            let det = j00 * j11 - j01 * j10;
+            let residual = (fa * fa + fb * fb).sqrt();
+            if residual <= f.target || det == 0.0 || !det.is_finite() {
+                last = Some((sc, tc, jet));
+                break;
+            }
+            let ds = (fa * j11 - fb * j01) / det;
+            let dt = (fb * j00 - fa * j10) / det;
+            s -= ds;
+            t -= dt;
+            if !(s.is_finite() && t.is_finite()) || (ds.abs() < 1e-17 && dt.abs() < 1e-17) {
+                break;
+            }
+        }
+        if !((-SLACK..=1.0 + SLACK).contains(&s) && (-SLACK..=1.0 + SLACK).contains(&t)) {
+            continue;
+        }
+        let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
+        let jet = match last {
+            Some((sc, tc, jet)) if (sc, tc) == (s, t) => jet,
+            _ => tensor_jet(&patch.net, cols, s, t, 1),
+        };
+        let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
+        let x = h.wp / h.w;
+        let r = x - f.o;
+        let along = f.dh.dot(&r);
+        let off = (r - f.dh * along).norm();
+        // The point is uncertain by `accept` off the surface, so its ray
+        // parameter by `accept/(|d|·cos)` for the angle of incidence: a
+        // root that close to `t_min` is the ray's own start (a secondary
+        // ray's origin on the surface), however grazing.
+        let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
+        let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
+        let own = along / f.dn - f.t_min
+            <= f.acceptance.distance / (f.dn * if cos.is_nan() { 1.0 } else { cos });
+        if f.acceptance.accepts(off) && !own {
+            return Some(PatchHit {
+                patch: k,
+                t: along / f.dn,
+                u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
+                v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+            });
+        }
+    }
+    None
+}
