@@ -14,6 +14,7 @@ mod candidates;
 mod double_double;
 mod meridian_cells;
 mod meridian_newton;
+mod monotone_spans;
 mod one_root;
 mod profile_approximation;
 mod profile_refine;
