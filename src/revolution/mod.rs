@@ -9,9 +9,11 @@
 //! cubic pieces within a certified deviation and the hits refined on the
 //! profile itself (`profile_approximation.rs`, `profile_refine.rs`).
 
+mod bounds;
 mod candidates;
 #[cfg(test)]
 mod double_double;
+mod intersect;
 mod meridian_cells;
 mod meridian_newton;
 mod monotone_spans;
