@@ -39,7 +39,7 @@ use std::f64::consts::TAU;
 ///    ([`Aabb::transformed`]: exactly the box of the rotated box). Finally the box grows by `16(n + 2)·ε` times the local
 ///    plus world coordinate magnitudes (`n` the profile degree), which covers
 ///    the rounding of subdivision, of the transform and of
-///    [`eval`](Surface::eval).
+///    [`eval`](crate::Surface::eval).
 impl<C: Curve<2>> PatchBounds for Revolution<C> {
     fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
         let (u0, u1) = (u.0.min(u.1), u.0.max(u.1));
