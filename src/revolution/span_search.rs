@@ -316,9 +316,9 @@ impl SpanOrder {
 
     /// The nearest span not yet visited whose entry is below `t_best`
     /// (and whether it holds exactly one root), marked visited. The least
-    /// entry is found by selects rather than branches on the data (sorting
-    /// the spans as they came mispredicted about two branches a ray); a
-    /// visited span's entry becomes infinite.
+    /// entry is found by selects rather than branches on the data (whose
+    /// order follows no pattern from one ray to the next); a visited span's
+    /// entry becomes infinite.
     fn next_nearest(&mut self, t_best: f64) -> Option<(usize, bool)> {
         let (mut pick, mut least) = (usize::MAX, t_best);
         for (i, &(entry, _)) in self.entries[..self.sorted].iter().enumerate() {

@@ -1,8 +1,8 @@
 //! The angle of a direction in `[0, 2π]`, a few times cheaper than `atan2`.
 //!
-//! Every hit's `v` is the angle of the ray point about the axis; through the
-//! C library's `atan2` it cost about 180 instructions, a twelfth of a wine
-//! glass ray. Here, with `a = |sin|`, `b = |cos|` and `z = min(a, b) /
+//! Every hit's `v` is the angle of the ray point about the axis, so this is
+//! on every ray's path (the C library's `atan2` costs about 180
+//! instructions). Here, with `a = |sin|`, `b = |cos|` and `z = min(a, b) /
 //! max(a, b) ∈ [0, 1]`:
 //!
 //! - `atan z = atan cᵢ + atan w` with `cᵢ = i/8` the nearest eighth and
@@ -64,7 +64,7 @@ pub(super) fn turn_angle(sin: f64, cos: f64) -> f64 {
     let (hi, lo) = ATAN_EIGHTHS[i];
     let r = hi + (lo + (w + w * tail));
     // The octant by selects: the signs are as good as random from one hit
-    // to the next, and branches on them were mispredicted half the time.
+    // to the next, so a branch on them would be mispredicted half the time.
     let r = select(steep, (FRAC_PI_2 - r) + FRAC_PI_2_LO, r);
     let r = select(cos < 0.0, (PI - r) + PI_LO, r);
     // A `sin` of −0 counts as on the axis (θ = 0 or π), as `+ 0.0` turns a
