@@ -1,7 +1,7 @@
 //! # revolve
 //!
-//! Spline curves and surfaces of revolution with exact, robust ray
-//! intersection.
+//! Spline curves and surfaces — surfaces of revolution and tensor-product
+//! Bézier, B-spline and NURBS surfaces — with certified ray intersection.
 //!
 //! The curve layer:
 //!
@@ -9,8 +9,11 @@
 //!   algorithm, with derivatives of any order, subdivision and bounds;
 //! - [`BSpline`] curves of any degree and dimension (de Boor evaluation,
 //!   Cox–de Boor basis values and derivatives, derivative splines, knot
-//!   insertion, conversion to Bézier spans), including the course framework's
-//!   uniform knots and clamped knots;
+//!   insertion, conversion to Bézier spans), with uniform knots `i/(n + k)`
+//!   (the convention of the classic course ray-tracing framework, whose
+//!   assignments discretize Bézier and B-spline curves into surfaces of
+//!   revolution and whose scene files the ray caster reads) and clamped
+//!   knots;
 //! - [`Nurbs`] rational B-splines (evaluation in homogeneous coordinates,
 //!   derivatives of any order by the quotient rule, knot insertion,
 //!   rational Bézier spans), with exact circles and arcs
@@ -23,24 +26,44 @@
 //!
 //! Surfaces and rays:
 //!
-//! - [`Revolution`]: a profile turned about an axis ([`Surface`], with
-//!   analytic partials and limit normals on the axis), placeable anywhere,
-//!   tessellated with a certified bound ([`Mesh`]); any [`Curve`] can be the
-//!   profile ([`Revolution::try_new`] checks the trait's contract);
-//! - [`Intersect`] for revolutions: the exact intersector (the angle
-//!   eliminated, one polynomial per profile span, every root isolated) for
-//!   profiles with polynomial or rational Bézier spans (exact spheres and
-//!   tori from NURBS arcs), the same on a cubic approximation refined
-//!   by Newton's method for other profiles, and [`NewtonIntersector`] for
-//!   any [`PatchBounds`]; accuracy is a [`Tolerance`];
-//! - feature `testing`: proptest strategies and law checkers for your own
-//!   curves and surfaces;
-//! - feature `serde`: `Serialize` and `Deserialize` for the curves, the
-//!   surfaces, [`Ray`], [`Tolerance`] and [`Aabb`], written as their
-//!   defining data (a revolution's intersector tables are rebuilt when it is
-//!   read) and read back through the public constructors, so that bad data
-//!   is an error with the crate's [`Error`] message and a deserialized value
-//!   is as valid as a constructed one.
+//! - the [`Surface`] trait (point, analytic partials, normal) and
+//!   [`PatchBounds`] (a box around any parameter rectangle);
+//! - [`Revolution`]: a 2D profile turned about an axis placed anywhere, with
+//!   limit normals on the axis, tessellated with a certified bound
+//!   ([`Mesh`]); any [`Curve`] can be the profile ([`Revolution::try_new`]
+//!   checks the trait's contract);
+//! - tensor-product surfaces: [`BezierSurface`], [`BSplineSurface`] and
+//!   [`NurbsSurface`] (conversion to Bézier patches, knot insertion, limit
+//!   normals at collapsed edges), and [`BezierPatches`], a model made of
+//!   many Bézier patches (Newell's teapot) behind a bounding-volume
+//!   hierarchy;
+//! - [`Intersect`]: the nearest hit of a [`Ray`], one ray or many
+//!   ([`Intersect::intersect_batch`]). Certified for revolutions with
+//!   polynomial or rational Bézier spans (the angle eliminated, one
+//!   polynomial per span, every root isolated; exact spheres and tori from
+//!   NURBS arcs) and for the tensor surfaces (Bézier clipping with
+//!   Krawczyk's uniqueness test, finished by Newton's method): no
+//!   transversal hit missed, none false. Profiles without spans use a cubic
+//!   approximation refined on the profile; [`NewtonIntersector`] runs
+//!   Newton's method on `(t, u, v)` for any [`PatchBounds`] surface.
+//!   Accuracy is a [`Tolerance`].
+//!
+//! Where the code is: [`curve`] (one file per curve type), [`bernstein`] and
+//! [`roots`] (the kernels), [`ray`] (what every intersector shares: rays,
+//! hits, the acceptance rule, the hierarchy, generic Newton), [`revolution`]
+//! and [`tensor`] (each surface kind with its intersector and
+//! tessellation).
+//!
+//! Features:
+//!
+//! - `testing`: proptest strategies and law checkers for your own curves
+//!   and surfaces;
+//! - `serde`: `Serialize` and `Deserialize` for the curves, the surfaces,
+//!   [`Ray`], [`Tolerance`] and [`Aabb`], written as their defining data
+//!   (intersector tables are rebuilt when read) and read back through the
+//!   public constructors, so that bad data is an error with the crate's
+//!   [`Error`] message and a deserialized value is as valid as a
+//!   constructed one.
 //!
 //! Bad input is an [`Error`] value, never a panic; evaluation never returns
 //! NaN (parameters are moved into the domain, see [`Curve`]). Evaluation does
