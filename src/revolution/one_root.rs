@@ -70,6 +70,7 @@ impl EndValues {
     /// each of `A`, `B`, `d_y x` is computed to within `3ε` of its `m`,
     /// their squares to within `7ε m²` and `f` to within `9ε Σ m²`; the
     /// bound takes `16ε Σ m²`.
+    #[inline(always)]
     pub(super) fn new(q: &Query, table: &SpanTable) -> Self {
         let f = HitFunction::new(q);
         let (o, d) = (f.o, f.d);

@@ -48,6 +48,7 @@ pub(super) struct Query {
 impl Query {
     /// The query for the ray `o + t·d` (finite, `d ≠ 0`) at tolerance `tol`
     /// on an object of size `scale`.
+    #[inline(always)]
     pub(super) fn new(o: Vector3<f64>, d: Vector3<f64>, tol: &Tolerance, scale: f64) -> Self {
         // The tolerance is relative to the object; the rounding floor also
         // grows with the ray origin's distance.

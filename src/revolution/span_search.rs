@@ -171,7 +171,8 @@ impl SpanTable {
         }
         let to_working = |t: f64| (t * dn - shift) * self.unit;
         let (lo, hi) = (to_working(t_min), to_working(t_max));
-        let mut hit = SpanSearch::new(self, o * self.unit, d, lo, hi, tol, report).run()?;
+        let q = Query::new(o * self.unit, d, tol, self.scale);
+        let mut hit = SpanSearch::new(self, &q, lo, hi, report).run()?;
         let back = 1.0 / self.unit;
         hit.t = (hit.t * back + shift) / dn;
         hit.point = Point3::from(hit.point.coords * back);
@@ -279,7 +280,7 @@ impl SpanTable {
 /// origin, `t_best` the nearest hit so far), that hit, and the report.
 struct SpanSearch<'a> {
     table: &'a SpanTable,
-    q: Query,
+    q: &'a Query,
     t_floor: f64,
     t_best: f64,
     best: Option<LocalHit>,
@@ -345,17 +346,14 @@ impl<'a> SpanSearch<'a> {
     /// left it, lengths multiplied by `unit`, `t_min < t_max`).
     fn new(
         table: &'a SpanTable,
-        o: Vector3<f64>,
-        d: Vector3<f64>,
+        q: &'a Query,
         t_min: f64,
         t_max: f64,
-        tol: &Tolerance,
         report: &'a mut ExactReport,
     ) -> Self {
-        let q = Query::new(o, d, tol, table.scale);
         SpanSearch {
             table,
-            t_floor: q.acceptance.t_floor(t_min, d.norm()),
+            t_floor: q.acceptance.t_floor(t_min, q.d.norm()),
             q,
             t_best: t_max,
             best: None,
@@ -379,9 +377,9 @@ impl<'a> SpanSearch<'a> {
     fn consider(&mut self, order: &mut SpanOrder, k: usize, one_root: bool) {
         let span = &self.table.spans[k];
         let entry = if one_root {
-            height_entry(span, &self.q, self.t_floor, self.t_best)
+            height_entry(span, self.q, self.t_floor, self.t_best)
         } else {
-            span_entry(span, &self.q, self.t_floor, self.t_best)
+            span_entry(span, self.q, self.t_floor, self.t_best)
         };
         if let Some(entry) = entry {
             self.report.spans_entered += 1;
@@ -406,7 +404,7 @@ impl<'a> SpanSearch<'a> {
             Cell::Spans(words) => {
                 // The monotonic spans and the others in two passes, so that
                 // no branch asks which kind each span is.
-                let ends = (q.d.y != 0.0).then(|| EndValues::new(&q, table));
+                let ends = (q.d.y != 0.0).then(|| EndValues::new(q, table));
                 for (w, (word, steady)) in words.enumerate() {
                     let steady = match ends {
                         Some(ends) => {
@@ -429,7 +427,7 @@ impl<'a> SpanSearch<'a> {
             }
             Cell::Outside => {
                 for group in &table.groups {
-                    if span_entry(&group.bounds, &q, self.t_floor, self.t_best).is_none() {
+                    if span_entry(&group.bounds, q, self.t_floor, self.t_best).is_none() {
                         continue;
                     }
                     for k in group.first..group.end {
@@ -475,7 +473,7 @@ impl<'a> SpanSearch<'a> {
     /// if the polish did not reach it.
     #[inline(always)]
     fn polish_one_root<P: SpanForm>(&mut self, k: usize, span: P) -> bool {
-        let q = &self.q;
+        let q = self.q;
         self.report.roots += 1;
         let s = monotone_root(span, q);
         for t in candidate_times(span, q, s).into_iter().flatten() {
@@ -509,14 +507,14 @@ impl<'a> SpanSearch<'a> {
             // whether a grazing ray crosses the circle at all.
             let times = |s: f64| {
                 let s = height_root(span, q.o.y, s);
-                (s, circle_times(&q, span.x(s)))
+                (s, circle_times(q, span.x(s)))
             };
             span.with_height_polynomial(q.o.y, |g, err| {
                 self.root_hits(k, span, g, err, times);
             });
         } else {
-            let times = |s: f64| (s, candidate_times(span, &q, s));
-            span.with_hit_polynomial(&q, &self.table.weights, |f, err| {
+            let times = |s: f64| (s, candidate_times(span, q, s));
+            span.with_hit_polynomial(q, &self.table.weights, |f, err| {
                 self.root_hits(k, span, f, err, times);
             });
         }
@@ -591,7 +589,7 @@ impl<'a> SpanSearch<'a> {
             self.report.candidates += 1;
             let polished = self
                 .table
-                .polish(k, span, &self.q, s, t, &mut self.report.iterations);
+                .polish(k, span, self.q, s, t, &mut self.report.iterations);
             if let Some(hit) = polished {
                 self.offer(hit);
             }
