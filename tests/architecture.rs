@@ -11,9 +11,11 @@
 //! starting with `crate`, `super`, `self`, a child module or an imported
 //! name) and resolved to the file that *defines* the item, following `use`
 //! re-exports from module to module. A name that is not found (another
-//! crate's, a glob) resolves to the module file reached so far. A module's
-//! `mod child;` is not an edge, nor is its `pub use` of a descendant's item
-//! (a facade), unless its own code uses that name.
+//! crate's, a glob) resolves to the module file reached so far. A module
+//! file's use of its own descendants is not an edge: a module (`lib.rs`,
+//! `curve/mod.rs`) is the interface of the files below it, declares them,
+//! re-exports them and may call them (a trait's default methods call its
+//! implementations' helpers), while they build on it.
 //!
 //! Limits: paths built by macros are not seen; `#[path]` is not followed
 //! (the test asserts there is none); an inline non-test `mod x { … }` counts
@@ -45,7 +47,6 @@ const LAYERS: &[(&str, &str)] = &[
 struct Use {
     path: Vec<String>,
     name: String,
-    public: bool,
 }
 
 /// A source file, with its `#[cfg(test)]` items dropped.
@@ -173,12 +174,12 @@ fn drop_test_items(t: &[String]) -> Vec<String> {
 }
 
 /// Reads one use tree at `t[*at]` below `path`, its bindings into `out`.
-fn use_tree(t: &[String], at: &mut usize, mut path: Vec<String>, public: bool, out: &mut Vec<Use>) {
+fn use_tree(t: &[String], at: &mut usize, mut path: Vec<String>, out: &mut Vec<Use>) {
     while let Some(token) = t.get(*at) {
         *at += 1;
         if token == "{" {
             while t.get(*at).is_some_and(|s| s != "}") {
-                use_tree(t, at, path.clone(), public, out);
+                use_tree(t, at, path.clone(), out);
                 *at += usize::from(is(t, *at, ","));
             }
             *at += 1;
@@ -195,7 +196,7 @@ fn use_tree(t: &[String], at: &mut usize, mut path: Vec<String>, public: bool, o
             name = t.get(*at + 1).cloned().unwrap_or_default();
             *at += 2;
         }
-        return out.push(Use { path, name, public });
+        return out.push(Use { path, name });
     }
 }
 
@@ -208,10 +209,8 @@ impl File {
         let (mut code, mut uses, mut defs, mut i) = (vec![], vec![], BTreeSet::new(), 0);
         while i < t.len() {
             if t[i] == "use" {
-                let after_pub = code.iter().rev().take(6).any(|s| s == "pub");
-                let public = after_pub && code.last().is_some_and(|s| s == "pub" || s == ")");
                 i += 1;
-                use_tree(&t, &mut i, Vec::new(), public, &mut uses);
+                use_tree(&t, &mut i, Vec::new(), &mut uses);
                 continue;
             }
             match t[i].as_str() {
@@ -231,14 +230,6 @@ impl File {
             uses,
             defs,
         }
-    }
-
-    /// Whether `name` appears in the file's own code, not as a field, method
-    /// or path continuation, nor where a `fn` is defined.
-    fn mentions(&self, name: &str) -> bool {
-        let t = &self.code;
-        let used = |i: usize| i == 0 || !matches!(t[i - 1].as_str(), "." | "::" | "fn");
-        name != "*" && (0..t.len()).any(|i| t[i] == name && used(i))
     }
 }
 
@@ -293,11 +284,7 @@ impl Crate {
         for u in &f.uses {
             let (base, rest) = absolute(&f.module, &u.path);
             let (to, name) = self.resolve(&base, &rest, 0);
-            let m = &self.files[&to].module;
-            let facade = u.public && m.len() > f.module.len() && m.starts_with(&f.module);
-            if !facade || f.mentions(&u.name) {
-                out.push((to, name));
-            }
+            out.push((to, name));
         }
         let t = &f.code;
         for (i, first) in t.iter().enumerate() {
@@ -342,7 +329,9 @@ fn graph_of(sources: &Sources) -> Graph {
     for (path, file) in &krate.files {
         let edges = graph.entry(path.clone()).or_default();
         for (to, name) in krate.dependencies(file) {
-            if &to != path {
+            let below = &krate.files[&to].module;
+            let descendant = below.len() > file.module.len() && below.starts_with(&file.module);
+            if &to != path && !descendant {
                 edges.entry(to).or_default().insert(name);
             }
         }
@@ -519,13 +508,19 @@ fn a_grouped_multi_line_import_is_parsed() {
 }
 
 #[test]
-fn a_parent_declaring_and_re_exporting_a_child_is_not_an_edge() {
-    let lib = "pub const ROOT: u8 = 0;\nmod child;\npub use child::Thing;\n";
+fn a_module_using_its_own_children_is_not_an_edge() {
+    let lib = "pub const ROOT: u8 = 0;\nmod child;\npub use child::Thing;\nfn f(_: Thing) {}\n";
     let child = ("src/child.rs", "use super::ROOT;\npub struct Thing;\n");
     let graph = fixture(&[("src/lib.rs", lib), child]);
     assert_eq!(edges(&graph), ["src/child.rs -> src/lib.rs: ROOT"]);
-    // The parent's own code using the re-exported name is an edge again.
-    let lib = format!("{lib}fn f(_: Thing) {{}}\n");
-    let graph = fixture(&[("src/lib.rs", lib.as_str()), child]);
-    assert_eq!(cycles(&graph), [["src/child.rs", "src/lib.rs"]]);
+    assert!(cycles(&graph).is_empty());
+    // Two children using each other are a circle.
+    let lib = "mod a;\nmod b;\n";
+    let a = ("src/a.rs", "use crate::b::B;\npub struct A(B);\n");
+    let b = (
+        "src/b.rs",
+        "use crate::a::A;\npub struct B(Option<Box<A>>);\n",
+    );
+    let graph = fixture(&[("src/lib.rs", lib), a, b]);
+    assert_eq!(cycles(&graph), [["src/a.rs", "src/b.rs"]]);
 }

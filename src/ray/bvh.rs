@@ -13,7 +13,8 @@
 //! A ray visits the tree depth first, the nearer child first, and skips a
 //! node whose box it enters beyond the best hit found so far.
 
-use crate::{Aabb, Ray};
+use super::slab::Slab;
+use crate::Aabb;
 use nalgebra::Point3;
 
 /// Depth below which nodes split by the surface area heuristic; deeper
@@ -38,45 +39,6 @@ pub(crate) struct Bvh {
     nodes: Vec<Node>,
     /// Item indices, in leaf order.
     order: Vec<u32>,
-}
-
-/// The ray's slab data, computed once per ray.
-pub(crate) struct Slab {
-    origin: Point3<f64>,
-    inverse: [f64; 3],
-}
-
-impl Slab {
-    /// The slab data of `ray` (a finite origin and direction).
-    pub(crate) fn new(ray: &Ray) -> Self {
-        Slab {
-            origin: ray.origin,
-            inverse: [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z],
-        }
-    }
-
-    /// Where the ray enters `b` within `[lo, hi]`, if it meets it there.
-    /// A zero direction component (infinite inverse) keeps the range when
-    /// the origin is within the slab and empties it otherwise.
-    #[inline]
-    fn enter(&self, b: &Aabb, lo: f64, hi: f64) -> Option<f64> {
-        let (mut lo, mut hi) = (lo, hi);
-        for i in 0..3 {
-            let inv = self.inverse[i];
-            let (a, c) = (b.min[i] - self.origin[i], b.max[i] - self.origin[i]);
-            if inv.is_infinite() {
-                if a > 0.0 || c < 0.0 {
-                    return None;
-                }
-                continue;
-            }
-            let (t0, t1) = (a * inv, c * inv);
-            let (t0, t1) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-            lo = lo.max(t0);
-            hi = hi.min(t1);
-        }
-        (lo <= hi).then_some(lo)
-    }
 }
 
 impl Bvh {

@@ -8,6 +8,7 @@
 pub(crate) mod acceptance;
 pub(crate) mod bvh;
 pub mod newton;
+pub(crate) mod slab;
 
 pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 

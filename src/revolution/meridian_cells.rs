@@ -43,7 +43,7 @@
 //! height cells found in closed form. The intersector decides those spans
 //! from their end values.
 
-use super::monotone_spans::Monotone;
+use super::monotone_spans::{Monotone, SpanCurves};
 use crate::bernstein::binomial_row;
 use nalgebra::Vector3;
 
@@ -178,17 +178,6 @@ pub(super) struct MeridianCells {
     /// a strictly monotonic hit function, from byte `(k · HEIGHT_CELLS + j)
     /// · width`, and 7 bytes to spare.
     monotone: Vec<u8>,
-}
-
-/// The spans' Bernstein coefficients, `w` per span (degree `w − 1`), for
-/// [`MeridianCells::certify_monotone`], with the weights of products,
-/// [`product_weights`] of degree `w − 1`.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct SpanCurves<'a> {
-    pub(super) xs: &'a [f64],
-    pub(super) ys: &'a [f64],
-    pub(super) w: usize,
-    pub(super) weights: &'a [f64],
 }
 
 /// One span's box as the table sees it: heights `y` and distances from

@@ -2,7 +2,16 @@
 //! line of a range of slopes and heights of closest approach: the second
 //! table of [`MeridianCells`](super::meridian_cells::MeridianCells).
 
-use super::meridian_cells::SpanCurves;
+/// The spans' Bernstein coefficients, `w` per span (degree `w − 1`), for
+/// [`MeridianCells::certify_monotone`](super::meridian_cells::MeridianCells::certify_monotone), with the weights of products,
+/// [`product_weights`](super::meridian_cells::product_weights) of degree `w − 1`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SpanCurves<'a> {
+    pub(super) xs: &'a [f64],
+    pub(super) ys: &'a [f64],
+    pub(super) w: usize,
+    pub(super) weights: &'a [f64],
+}
 
 /// The certificates of monotonicity of a profile's spans, for boxes of
 /// line classes.

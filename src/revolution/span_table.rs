@@ -43,7 +43,8 @@
 //! decided by [`quick_roots`] (no root, or one certain sign change and its
 //! refined root); the rest go to the full search, [`find_roots_to`].
 
-use super::meridian_cells::{MeridianCells, SpanBox, SpanCurves, product_weights};
+use super::meridian_cells::{MeridianCells, SpanBox, product_weights};
+use super::monotone_spans::SpanCurves;
 use super::span_culling::{Group, Span, group_size};
 use crate::RationalBezierSpan;
 use crate::bernstein::Coefficient;

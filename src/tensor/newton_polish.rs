@@ -1,8 +1,7 @@
 //! The finish of the patch search: Newton's method on the ray's two plane
 //! distances from a box, and the test that its point is a hit.
 
-use super::patch::{Patch, tensor_jet};
-use super::search::{PatchHit, SearchBox};
+use super::patch::{Patch, PatchHit, tensor_jet};
 use crate::ray::acceptance::Acceptance;
 use nalgebra::Vector3;
 
@@ -28,21 +27,21 @@ pub(super) struct Frame {
 }
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
 /// `k`, with `cols` control points a row) from the
-/// centre of `cell` (then its corners); the hit if a start converges to a
+/// centre of the box `bs × bt` (then its corners); the hit if a start converges to a
 /// point of the patch within the acceptance.
 pub(super) fn polish(
     patch: &Patch,
     k: usize,
     cols: usize,
     f: &Frame,
-    cell: SearchBox,
+    (bs, bt): ((f64, f64), (f64, f64)),
 ) -> Option<PatchHit> {
     let starts = [
-        (0.5 * (cell.s.0 + cell.s.1), 0.5 * (cell.t.0 + cell.t.1)),
-        (cell.s.0, cell.t.0),
-        (cell.s.1, cell.t.1),
-        (cell.s.0, cell.t.1),
-        (cell.s.1, cell.t.0),
+        (0.5 * (bs.0 + bs.1), 0.5 * (bt.0 + bt.1)),
+        (bs.0, bt.0),
+        (bs.1, bt.1),
+        (bs.0, bt.1),
+        (bs.1, bt.0),
     ];
     for (s0, t0) in starts {
         let (mut s, mut t) = (s0, t0);

@@ -9,11 +9,12 @@
 //! along the column of results (in `s`) (Farin, *Curves and Surfaces for
 //! CAGD*, ch. 16–17), on stack scratch space.
 
-use crate::Aabb;
 use crate::bernstein::{self, Coefficient, lerp};
 use crate::curve::Homogeneous;
+use crate::curve::unit_direction;
 use crate::scratch::with_scratch;
-use nalgebra::{Point3, Vector3};
+use crate::{Aabb, Hit, Ray};
+use nalgebra::{Point3, Unit, Vector3};
 
 /// One Bézier patch of a tensor-product surface, on the parameter rectangle
 /// `u × v`.
@@ -141,4 +142,34 @@ pub(crate) fn project_jet(h: &Jet<Homogeneous<3>>, order: usize) -> Jet<Vector3<
         d[1][1] = (h[1][1].wp - d[0][1] * h[1][0].w - d[1][0] * h[0][1].w - s * h[1][1].w) / w;
     }
     d
+}
+
+/// A hit in a surface's own parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PatchHit {
+    /// Index of the patch hit.
+    pub(crate) patch: usize,
+    pub(crate) t: f64,
+    pub(crate) u: f64,
+    pub(crate) v: f64,
+}
+
+impl PatchHit {
+    /// The crate's hit for `ray`, with the surface's `point` and `normal`
+    /// at `(u, v)`; where the surface has no tangent plane the normal faces
+    /// the ray.
+    pub(crate) fn to_hit(
+        self,
+        ray: &Ray,
+        point: Point3<f64>,
+        normal: Option<Unit<Vector3<f64>>>,
+    ) -> Option<Hit> {
+        let normal = normal.or_else(|| unit_direction(-ray.dir))?;
+        Some(Hit {
+            t: self.t,
+            point,
+            normal,
+            uv: (self.u, self.v),
+        })
+    }
 }

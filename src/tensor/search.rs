@@ -44,12 +44,12 @@
 use super::clip::{CLIP_ENOUGH, clip, restrict_lines};
 use super::krawczyk::{TRY_UNIQUE, unique_root};
 use super::newton_polish::{Frame, SLACK, polish};
-use super::patch::Patch;
-use crate::curve::unit_direction;
+use super::patch::{Patch, PatchHit};
 use crate::ray::acceptance::Acceptance;
-use crate::ray::bvh::{Bvh, Slab};
-use crate::{Hit, Ray, Tolerance};
-use nalgebra::{Point3, Unit, Vector3};
+use crate::ray::bvh::Bvh;
+use crate::ray::slab::Slab;
+use crate::{Ray, Tolerance};
+use nalgebra::Vector3;
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
 /// handed to Newton's method.
@@ -59,36 +59,6 @@ const SMALL: f64 = 1.0 / (1u64 << 14) as f64;
 /// of the box at hand, which is halved at most `2·log₂(1/SMALL)` times
 /// before it is small.
 const PENDING_BOXES: usize = 2 * 14 + 4;
-
-/// A hit in a surface's own parameters.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct PatchHit {
-    /// Index of the patch hit.
-    pub(crate) patch: usize,
-    pub(crate) t: f64,
-    pub(crate) u: f64,
-    pub(crate) v: f64,
-}
-
-impl PatchHit {
-    /// The crate's hit for `ray`, with the surface's `point` and `normal`
-    /// at `(u, v)`; where the surface has no tangent plane the normal faces
-    /// the ray.
-    pub(crate) fn to_hit(
-        self,
-        ray: &Ray,
-        point: Point3<f64>,
-        normal: Option<Unit<Vector3<f64>>>,
-    ) -> Option<Hit> {
-        let normal = normal.or_else(|| unit_direction(-ray.dir))?;
-        Some(Hit {
-            t: self.t,
-            point,
-            normal,
-            uv: (self.u, self.v),
-        })
-    }
-}
 
 /// One box of the search: its parameter ranges within the patch and how
 /// many subdivisions made its coefficients `(α, β, γ, w)`.
@@ -239,7 +209,7 @@ fn search_patch(
             }
             let (ws, wt) = (cell.s.1 - cell.s.0, cell.t.1 - cell.t.0);
             if ws <= SMALL && wt <= SMALL {
-                if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
+                if let Some(hit) = polish(patch, k, q + 1, frame, (cell.s, cell.t)) {
                     nearest.offer(hit);
                 }
                 continue 'cells;
@@ -275,7 +245,7 @@ fn search_patch(
             // A box that holds exactly one root (Krawczyk's test) is
             // finished by Newton's method if it lands inside the box.
             if ws.max(wt) <= TRY_UNIQUE && unique_root(work, p, q, [bound[0], bound[1]]) {
-                if let Some(hit) = polish(patch, k, q + 1, frame, cell) {
+                if let Some(hit) = polish(patch, k, q + 1, frame, (cell.s, cell.t)) {
                     let s_hit = (hit.u - patch.u.0) / (patch.u.1 - patch.u.0);
                     let t_hit = (hit.v - patch.v.0) / (patch.v.1 - patch.v.0);
                     let inside = s_hit >= cell.s.0 - SLACK
@@ -350,7 +320,8 @@ fn search_patch(
                 // Out of room (not seen: boxes split at most
                 // 2·log₂(1/SMALL) times): the far half is finished now
                 // by Newton's method, unproven.
-                if let Some(hit) = polish(patch, k, q + 1, frame, make(far)) {
+                let far = make(far);
+                if let Some(hit) = polish(patch, k, q + 1, frame, (far.s, far.t)) {
                     nearest.offer(hit);
                 }
             }
