@@ -18,8 +18,7 @@
 //!
 //! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use std::hint::black_box;
 use std::time::Duration;
