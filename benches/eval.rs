@@ -26,9 +26,8 @@ use std::time::Duration;
 use common::{Rng, helix_points};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
-use revolve::curve::RationalBezier;
 use revolve::nalgebra::{Point, Point2, Vector3};
-use revolve::{BSpline, Bezier, Curve, CurveProjector, Nurbs};
+use revolve::{BSpline, Bezier, Curve, CurveProjector, Nurbs, RationalBezier};
 
 /// Number of precomputed parameters; a power of two so that cycling is a mask.
 const N_T: usize = 1024;

@@ -117,8 +117,7 @@ fn random_net(state: &mut u64, rows: usize, cols: usize) -> Vec<Vec<Point3<f64>>
 /// is too small.
 #[test]
 fn the_bound_checker_accepts_crate_surfaces_and_catches_a_short_box() {
-    use revolve::surface::BoundedSurface;
-    use revolve::{Aabb, BSplineSurface, BezierSurface, NurbsSurface};
+    use revolve::{Aabb, BSplineSurface, BezierSurface, BoundedSurface, NurbsSurface};
     let mut state = 0x0B0D_u64;
     for (rows, cols) in [(2, 2), (4, 4), (3, 5), (6, 2)] {
         let bezier = BezierSurface::new(random_net(&mut state, rows, cols)).unwrap();

@@ -7,9 +7,9 @@
 use revolve_testkit as common;
 
 use common::Rng;
-use revolve::curve::{MAX_ELEVATED_DEGREE, RationalBezier};
+use revolve::curve::MAX_ELEVATED_DEGREE;
 use revolve::nalgebra::{Point, Point1, Point2, Point3};
-use revolve::{BSpline, Bezier, Curve, Error};
+use revolve::{BSpline, Bezier, Curve, Error, RationalBezier};
 
 /// Control points with coordinates uniform in `[−1, 1]`.
 fn random_points<const D: usize>(rng: &mut Rng, count: usize) -> Vec<Point<f64, D>> {

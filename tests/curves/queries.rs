@@ -7,9 +7,10 @@
 use revolve_testkit as common;
 
 use common::Rng;
-use revolve::curve::{CurveProjector, RationalBezier, RationalBezierSpan};
 use revolve::nalgebra::{Point, Point2, Point3, Vector2};
-use revolve::{BSpline, Bezier, Curve, Error, NearestPoint};
+use revolve::{
+    BSpline, Bezier, Curve, CurveProjector, Error, NearestPoint, RationalBezier, RationalBezierSpan,
+};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 
 // ---------------------------------------------------------------------------

@@ -2,9 +2,9 @@
 //! derivatives against finite differences and the closed form of the
 //! circle, bad input as named errors.
 
-use revolve::curve::{MAX_DERIVATIVE_ORDER, RationalBezier};
+use revolve::curve::MAX_DERIVATIVE_ORDER;
 use revolve::nalgebra::{Point2, Point3, Vector2};
-use revolve::{Bezier, Curve, Error};
+use revolve::{Bezier, Curve, Error, RationalBezier};
 use std::f64::consts::FRAC_1_SQRT_2;
 
 /// The quarter of the circle of radius `r` from angle 0 to π/2.

@@ -22,13 +22,12 @@
 use revolve_testkit as common;
 
 use common::Rng;
-use revolve::curve::MAX_SEGMENTS;
 use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2, Vector3};
-use revolve::surface::BoundedSurface;
 use revolve::{
-    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface, Curve, Error,
-    Hit, Intersect, MAX_COORDINATE, Mesh, NewtonIntersector, Nurbs, NurbsSurface, RationalBezier,
-    RationalBezierSpan, Ray, Revolution, Surface, Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface,
+    BoundedSurface, Curve, Error, Hit, Intersect, MAX_COORDINATE, MAX_SEGMENTS, Mesh,
+    NewtonIntersector, Nurbs, NurbsSurface, RationalBezier, RationalBezierSpan, Ray, Revolution,
+    Surface, Tolerance,
 };
 use std::any::Any;
 use std::cell::RefCell;

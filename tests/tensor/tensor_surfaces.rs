@@ -10,10 +10,9 @@ use common::tensor_shapes::sphere_octant;
 
 use common::random_tensors::{Xorshift64Star as Rng, clamped_knots};
 use revolve::nalgebra::{Point3, Point4, Vector3};
-use revolve::surface::{BezierPatch, RationalBezierPatch};
 use revolve::{
-    BSpline, BSplineSurface, BezierSurface, BoundedSurface, Curve, Error, Intersect,
-    NewtonIntersector, NurbsSurface, Ray, Surface,
+    BSpline, BSplineSurface, BezierPatch, BezierSurface, BoundedSurface, Curve, Error, Intersect,
+    NewtonIntersector, NurbsSurface, RationalBezierPatch, Ray, Surface,
 };
 
 fn close(a: Point3<f64>, b: Point3<f64>, tol: f64) -> bool {
