@@ -291,7 +291,7 @@ pub fn bezier_hits(s: &BezierSurface, ray: &Ray) -> RefHits {
 }
 
 /// The reference's roots on a B-spline surface (its Bézier pieces, from
-/// the library's `to_bezier_patches`, which `tests/tensor_surfaces.rs`
+/// the library's `to_bezier_patches`, which `tests/tensor/tensor_surfaces.rs`
 /// checks against an independent evaluator; the root finding here is the
 /// reference's own).
 pub fn bspline_hits(s: &BSplineSurface, ray: &Ray) -> RefHits {

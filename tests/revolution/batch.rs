@@ -5,7 +5,7 @@
 //!
 //! Issue 19 (a SIMD batch path for revolutions) adds: the batch path returns
 //! bit for bit the hits of the single path
-//! - on every hard case of DESIGN.md §5 (the rays of `tests/hard_cases.rs`,
+//! - on every hard case of DESIGN.md §5 (the rays of the `hard_cases` module,
 //!   on the same kinds of profiles), each put into batches with random lanes
 //!   that hit and miss, then again from each of its hits (a secondary ray
 //!   with `t_min` at the hit) and from each hit point (a ray starting on the
