@@ -8,8 +8,7 @@
 //!
 //! Run: `cargo bench --bench discretize` (CI: `cargo bench --bench discretize -- --test`).
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -18,8 +18,7 @@
 //!
 //! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -27,9 +26,8 @@ use std::time::Duration;
 use common::{Rng, helix_points};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::bernstein::{bernstein_sum, de_casteljau, horner, to_power_basis};
-use revolve::curve::RationalBezier;
 use revolve::nalgebra::{Point, Point2, Vector3};
-use revolve::{BSpline, Bezier, Curve, CurveProjector, Nurbs};
+use revolve::{BSpline, Bezier, Curve, CurveProjector, Nurbs, RationalBezier};
 
 /// Number of precomputed parameters; a power of two so that cycling is a mask.
 const N_T: usize = 1024;

@@ -32,30 +32,22 @@
 //! (`intersect_triangle/moller_trumbore/random` is the unit). Ray sets:
 //! `random` (as above, the same rays as `exact/random`) and `camera`, the
 //! primary rays of a pinhole camera looking at the object (64×64 pixels,
-//! each batch 8 neighbouring pixels of one row: coherent rays).
+//! each batch 8 neighbouring pixels of one row: coherent rays;
+//! `revolve_testkit::camera`, the ray caster's formulas).
 //!
 //! Run: `cargo bench --bench intersect` (CI: `-- --test`); the batch groups
 //! and their unit alone: `cargo bench --bench intersect --
 //! 'intersect_batch|intersect_triangle'`. The hit rate of every set is
 //! printed once.
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-#[path = "../examples/accuracy_cost/patch_shapes.rs"]
-mod patch_shapes;
-// The ray caster's pinhole camera (its module names it `crate::scene::Camera`).
-#[path = "../examples/raycast/camera.rs"]
-#[allow(dead_code)]
-mod camera;
-#[path = "../examples/raycast/scene.rs"]
-#[allow(dead_code)]
-mod scene;
+use revolve_testkit as common;
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use camera::PinholeCamera;
 use common::Rng;
+use common::camera::{Camera, PinholeCamera};
+use common::patch_shapes;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Unit, Vector3};
 use revolve::{
@@ -243,18 +235,15 @@ fn camera_rays(b: &Aabb) -> Vec<Ray> {
     let radius = 0.5 * b.extent().norm();
     let back = Vector3::new(0.35, 0.25, 1.0).normalize();
     let distance = 3.0 * radius;
-    let camera = PinholeCamera::new(&scene::Camera {
+    PinholeCamera::new(&Camera {
         center: b.center() + back * distance,
         direction: -back,
         up: Vector3::y(),
         angle_degrees: 2.0 * (radius / distance).asin().to_degrees(),
         width: CAMERA_PIXELS,
         height: CAMERA_PIXELS,
-    });
-    (0..CAMERA_PIXELS)
-        .flat_map(|y| (0..CAMERA_PIXELS).map(move |x| (x, y)))
-        .map(|(x, y)| camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
-        .collect()
+    })
+    .primary_rays()
 }
 
 /// Benchmarks `one_batch(k)` (the `k`-th batch of [`LANES`] rays, cycled

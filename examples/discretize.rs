@@ -15,8 +15,7 @@
 //! flattened polyline, under one legend. It prints what it wrote and the
 //! flattening's certified bound.
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use common::{vase, wine_glass};
 use revolve::nalgebra::Point2;

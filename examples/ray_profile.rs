@@ -17,8 +17,7 @@
 //! through `Intersect::intersect_batch` eight at a time instead of one by
 //! one.
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use common::Rng;
 use revolve::nalgebra::{Point2, Vector3};

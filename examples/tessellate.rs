@@ -13,8 +13,7 @@
 //! curve instead). The mesh is within the tolerance of the surface; the bound
 //! it achieved is printed and written into the OBJ header.
 
-#[path = "../tests/common/mod.rs"]
-mod common;
+use revolve_testkit as common;
 
 use revolve::nalgebra::Point2;
 use revolve::{BSpline, Bezier, BezierPatches, Mesh, Revolution};

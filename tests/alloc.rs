@@ -8,8 +8,15 @@
 //! current thread's counter. The same allocator also keeps, per thread, the
 //! bytes currently held (requested sizes): what a built value holds is the
 //! change across its build ([`held_by`]).
+//!
+//! Every allocation check of the test suite is in this binary, so that only
+//! it runs under the counting allocator: besides curves and revolutions, the
+//! Newton intersector's queries ([`newton`]), NURBS evaluation ([`nurbs`])
+//! and tensor-product surface evaluation ([`tensor_surfaces`]), each on the
+//! data of its subject's tests (`revolve_testkit::newton_rays`,
+//! `random_nurbs`, `random_tensors`).
 
-mod common;
+use revolve_testkit as common;
 
 use common::{allocations_in, allocations_so_far};
 use revolve::nalgebra::{Point, SVector};
@@ -384,4 +391,93 @@ fn the_teapot_model_is_small_and_does_not_allocate_per_ray() {
         hits += usize::from(hit.is_some());
     }
     assert!(hits > 100, "only {hits} hits");
+}
+
+// ---------------------------------------- the other layers' hot paths ----
+
+/// The generic Newton intersector (the tests of `tests/revolution/newton.rs`).
+mod newton {
+    use super::common;
+    use common::newton_rays::{Xorshift64 as Rng, pole_vase as vase, random_ray};
+    use common::{GLASS, allocations_in, uniform_cubic};
+    use revolve::{Intersect, NewtonIntersector};
+
+    #[test]
+    fn queries_do_not_allocate() {
+        let vase = vase();
+        let glass = uniform_cubic(&GLASS);
+        let newton_vase = NewtonIntersector::new(&vase, 8);
+        let newton_glass = NewtonIntersector::new(&glass, 10);
+        let mut rng = Rng::new(17);
+        for _ in 0..200 {
+            let ray = random_ray(&mut rng, &newton_glass.bounds());
+            let t = f64::INFINITY;
+            assert_eq!(allocations_in(|| newton_glass.intersect(&ray, 0.0, t)), 0);
+            assert_eq!(
+                allocations_in(|| newton_glass.intersect_with_report(&ray, 0.0, t)),
+                0
+            );
+            let ray = random_ray(&mut rng, &newton_vase.bounds());
+            assert_eq!(allocations_in(|| newton_vase.intersect(&ray, 0.0, t)), 0);
+        }
+    }
+}
+
+/// NURBS curves (the tests of `tests/curves/nurbs.rs`).
+mod nurbs {
+    use super::common;
+    use common::random_nurbs::{parameters, random_parts};
+    use common::{Rng, allocations_in};
+    use revolve::nalgebra::{Point2, Vector2};
+    use revolve::{Curve, Nurbs};
+
+    #[test]
+    fn evaluation_does_not_allocate_up_to_degree_16() {
+        let mut rng = Rng(43);
+        for degree in [1, 2, 3, 7, 16] {
+            let parts = random_parts(&mut rng, degree, 0.1, 10.0);
+            let c = parts.nurbs();
+            let circle = Nurbs::circle(Point2::new(1.0, 2.0), 3.0).unwrap();
+            let ts = parameters(&mut rng, &c, 10);
+            let count = allocations_in(|| {
+                let mut out = [Vector2::zeros(); 4];
+                let mut sum = Vector2::zeros();
+                for &t in &ts {
+                    sum += c.eval(t).coords + c.derivative(t) + circle.eval(t).coords;
+                    let (p, d) = c.eval_with_derivative(t);
+                    sum += p.coords + d;
+                    c.derivatives(t, &mut out).unwrap();
+                    sum += out[3] + c.nth_derivative(t, 2).unwrap();
+                    sum += c.tangent(t).map_or(Vector2::zeros(), |u| u.into_inner());
+                }
+                sum
+            });
+            assert_eq!(count, 0, "degree {degree}");
+        }
+    }
+}
+
+/// Tensor-product surfaces (the tests of `tests/tensor/tensor_surfaces.rs`).
+mod tensor_surfaces {
+    use super::common;
+    use common::allocations_in;
+    use common::random_tensors::{Xorshift64Star as Rng, clamped_knots};
+    use revolve::{BSplineSurface, BezierSurface, NurbsSurface, Surface};
+
+    #[test]
+    fn bicubic_evaluation_does_not_allocate() {
+        let mut rng = Rng(59);
+        let bezier = BezierSurface::new(rng.grid(4, 4)).unwrap();
+        let knots = (clamped_knots(&mut rng, 3, 7), clamped_knots(&mut rng, 3, 6));
+        let bspline = BSplineSurface::new((3, 3), knots.clone(), rng.grid(7, 6)).unwrap();
+        let nurbs = NurbsSurface::new((3, 3), knots, rng.grid(7, 6), rng.weights(7, 6)).unwrap();
+        let surfaces: [&dyn Surface; 3] = [&bezier, &bspline, &nurbs];
+        for s in surfaces {
+            let (u, v) = (rng.next(), rng.next());
+            assert_eq!(allocations_in(|| s.eval(u, v)), 0);
+            assert_eq!(allocations_in(|| s.partials(u, v)), 0);
+            assert_eq!(allocations_in(|| s.normal(u, v)), 0);
+        }
+        assert_eq!(allocations_in(|| bezier.second_partials(0.3, 0.7)), 0);
+    }
 }

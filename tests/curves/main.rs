@@ -1,0 +1,16 @@
+//! Integration tests of the curve layer (`revolve::curve`, `revolve::bernstein`):
+//! Bézier, B-spline, rational Bézier and NURBS curves against closed forms
+//! and exact arithmetic, degree elevation, the nearest-point and arc-length
+//! queries, high-degree stability, and property tests of the curve laws.
+//!
+//! One module per subject; each module's docs state its references and
+//! tolerances.
+
+mod bezier;
+mod bspline;
+mod elevate;
+mod nurbs;
+mod properties;
+mod queries;
+mod rational_bezier;
+mod stability;

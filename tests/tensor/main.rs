@@ -1,0 +1,15 @@
+//! Integration tests of tensor-product surfaces (Bézier, B-spline and NURBS
+//! surfaces, `BezierPatches` models): evaluation against closed forms and an
+//! independent evaluator, the certified ray–patch intersector against closed
+//! forms and an independent reference (`revolve_testkit::patch_reference`),
+//! its hard cases, and tessellation.
+//!
+//! One module per subject; each module's docs state its references and
+//! tolerances.
+
+mod bezier_patches;
+mod patch_hard_cases;
+mod patch_intersect;
+mod patch_mesh;
+mod patch_reference;
+mod tensor_surfaces;
