@@ -20,8 +20,8 @@
 use super::bspline::blossom_in_place;
 use super::homogeneous::Homogeneous;
 use super::{clamp_to_box, point_bounds};
+use crate::allocation::try_with_capacity;
 use crate::bernstein::{Coefficient, binomial_row, lerp};
-use crate::error::try_with_capacity;
 use crate::scratch::with_scratch;
 use crate::{BSpline, Bezier, Error, RationalBezier};
 use nalgebra::{Point, SVector};

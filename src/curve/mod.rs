@@ -45,18 +45,14 @@ pub use query::{CurveProjector, NearestPoint};
 pub(crate) use rational_bezier::validate_weights;
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 
+pub use crate::limits::MAX_DERIVATIVE;
+
 use crate::Error;
 use nalgebra::{Point, SVector, Unit};
 
 /// The most segments [`Curve::discretize`] makes (`2²⁴`, so at most
 /// `2²⁴ + 1` samples); [`Curve::try_discretize`] refuses more.
 pub const MAX_SEGMENTS: usize = 1 << 24;
-
-/// The largest derivative magnitude a [`Bezier`] or [`BSpline`] may have
-/// (`1e300`): constructors refuse curves whose derivatives of some order could
-/// exceed it ([`Error::DerivativeOverflow`]), so that every derivative of an
-/// accepted curve, of any order, is finite.
-pub const MAX_DERIVATIVE: f64 = 1e300;
 
 /// A parametric curve in `D` dimensions.
 ///
@@ -284,7 +280,7 @@ pub trait Curve<const D: usize> {
         }
         let segments = segments.max(1);
         let (a, b) = self.domain();
-        let mut samples = crate::error::try_with_capacity(segments + 1)?;
+        let mut samples = crate::allocation::try_with_capacity(segments + 1)?;
         samples.extend((0..=segments).map(|i| {
             let s = i as f64 / segments as f64;
             let t = match i {
