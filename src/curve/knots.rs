@@ -18,7 +18,7 @@
 use super::check_in_domain;
 use crate::Error;
 use crate::bernstein::{Coefficient, lerp};
-use crate::limits::MAX_DERIVATIVE;
+use crate::limits::{MAX_COORDINATE, MAX_DERIVATIVE};
 use crate::scratch::with_scratch;
 use nalgebra::{Point, SVector};
 use std::ops::Div;
@@ -78,11 +78,11 @@ pub(crate) fn check_degree(degree: usize, points: usize) -> Result<(), Error> {
 }
 
 /// Checks a knot vector for `n` control points of degree `degree`: the
-/// checks of [`BSpline::new`](crate::BSpline::new) after the points', in its order
-/// ([`Error::DegreeTooHigh`], [`Error::KnotCount`], [`Error::NonFiniteKnot`],
-/// [`Error::KnotTooLarge`], [`Error::DecreasingKnots`],
-/// [`Error::KnotGapTooSmall`], [`Error::KnotMultiplicity`],
-/// [`Error::EmptyDomain`]). Shared with the rational B-spline.
+/// checks of [`BSpline::new`](crate::BSpline::new) after the points', in
+/// its order ([`Error::DegreeTooHigh`], [`Error::KnotCount`],
+/// [`Error::NonFiniteKnot`], [`Error::KnotTooLarge`],
+/// [`Error::DecreasingKnots`], [`Error::KnotGapTooSmall`],
+/// [`Error::KnotMultiplicity`], [`Error::EmptyDomain`]).
 pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), Error> {
     check_degree(degree, n)?;
     let expected = n + degree + 1;
@@ -96,7 +96,7 @@ pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(
         if !value.is_finite() {
             return Err(Error::NonFiniteKnot { index });
         }
-        if value.abs() > crate::MAX_COORDINATE {
+        if value.abs() > MAX_COORDINATE {
             return Err(Error::KnotTooLarge { index, value });
         }
     }
@@ -147,7 +147,7 @@ pub(crate) fn blossom<T: Coefficient>(
 }
 
 /// [`blossom`] on control values already in `s` (overwritten).
-pub(crate) fn blossom_in_place<T: Coefficient>(
+fn blossom_in_place<T: Coefficient>(
     knots: &[f64],
     p: usize,
     span: usize,
@@ -195,7 +195,7 @@ pub(crate) fn derivative_control_step<T>(
     s: &mut [T],
     r: usize,
 ) where
-    T: Coefficient + std::ops::Div<f64, Output = T>,
+    T: Coefficient + Div<f64, Output = T>,
 {
     for j in 0..=(p - r) {
         // Control value span − p + j of the r-th derivative spline.
