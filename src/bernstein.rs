@@ -262,6 +262,56 @@ pub fn differentiate_in_place<T: Coefficient>(c: &mut [T]) -> usize {
     n
 }
 
+/// The value at `t` of the `order`-th derivative of the polynomial with
+/// coefficients `c`: [`differentiate_in_place`] `order` times, then
+/// [`de_casteljau`] on what is left. Overwrites `c`; `None` when `order` is
+/// at least `c.len()` (the derivative is then identically zero).
+pub(crate) fn nth_derivative_in_place<T: Coefficient>(
+    c: &mut [T],
+    order: usize,
+    t: f64,
+) -> Option<T> {
+    let mut len = c.len();
+    for _ in 0..order {
+        len = differentiate_in_place(&mut c[..len]);
+    }
+    de_casteljau(&mut c[..len], t)
+}
+
+/// The Bernstein coefficients of degree `n + times` of the polynomial with
+/// coefficients `points` (degree `n`): the same polynomial written with a
+/// higher degree (Farin, *Curves and Surfaces for CAGD*, degree elevation
+/// repeated `times` times in one formula),
+///
+/// ```text
+/// Qᵢ = Σⱼ C(n, j)·C(times, i − j) / C(n + times, i) · Pⱼ,   i = 0 … n + times,
+/// ```
+///
+/// the sum over `max(0, i − times) ≤ j ≤ min(n, i)`, accumulated in
+/// increasing `j`, each weight computed as
+/// `(C(n, j)·C(times, i − j))/C(n + times, i)` from [`binomial_row`]s. The
+/// weights are positive and sum to one (Vandermonde's identity), so each
+/// `Qᵢ` is a convex combination of the `Pⱼ`: the computation is stable,
+/// and the new coefficients stay in the old ones' box. `Q₀ = P₀·1` and
+/// `Q_{n+times} = Pₙ·1` (exact). Empty for no points; a copy for
+/// `times = 0`.
+pub(crate) fn elevate_degree<T: Coefficient>(points: &[T], times: usize) -> Vec<T> {
+    let Some(n) = points.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let q = n + times;
+    let (row_n, row_k, row_q) = (binomial_row(n), binomial_row(times), binomial_row(q));
+    (0..=q)
+        .map(|i| {
+            let (lo, hi) = (i.saturating_sub(times), i.min(n));
+            let weight = |j: usize| row_n[j] * row_k[i - j] / row_q[i];
+            (lo + 1..=hi).fold(points[lo] * weight(lo), |acc, j| {
+                acc + points[j] * weight(j)
+            })
+        })
+        .collect()
+}
+
 /// Splits the polynomial with coefficients `c` at `t` into the coefficients of
 /// its restrictions to `[0, t]` (written to `left`) and `[t, 1]` (written to
 /// `right`), each reparametrized to `[0, 1]`.

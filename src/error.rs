@@ -1,5 +1,6 @@
 //! The crate's error type: every bad input is reported as a value, never a panic.
 
+use crate::limits::{MAX_COORDINATE, MAX_DERIVATIVE};
 use std::fmt;
 
 /// What was wrong with an input.
@@ -10,6 +11,7 @@ use std::fmt;
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
+    // The data that defines a curve: control points, weights, circles and arcs.
     /// A curve needs at least one control point.
     NoControlPoints,
     /// A control point has a NaN or infinite coordinate.
@@ -26,6 +28,52 @@ pub enum Error {
         /// The offending coordinate.
         value: f64,
     },
+    /// A rational curve needs one weight per control point.
+    WeightCount {
+        /// The number of control points.
+        expected: usize,
+        /// The number of weights given.
+        found: usize,
+    },
+    /// A weight is zero, negative, NaN or infinite (weights must be
+    /// positive and finite).
+    InvalidWeight {
+        /// Index of the weight.
+        index: usize,
+        /// The offending weight.
+        weight: f64,
+    },
+    /// The largest weight is more than
+    /// [`MAX_WEIGHT_RATIO`](crate::curve::MAX_WEIGHT_RATIO) times the
+    /// smallest.
+    WeightRatioTooLarge {
+        /// Largest over smallest weight.
+        ratio: f64,
+        /// The limit.
+        max: f64,
+    },
+    /// A circle's or arc's radius is not a finite positive number at most
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidRadius {
+        /// The radius given.
+        radius: f64,
+    },
+    /// A circle's or arc's center has a NaN or infinite coordinate, or one
+    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidCenter {
+        /// The center given.
+        center: nalgebra::Point2<f64>,
+    },
+    /// An arc's sweep `end − start` (radians, counter-clockwise) is not in
+    /// `(0, 2π]`, or an angle is NaN or infinite.
+    InvalidSweep {
+        /// The start angle given.
+        start: f64,
+        /// The end angle given.
+        end: f64,
+    },
+
+    // Knot vectors and degrees.
     /// A knot is NaN or infinite.
     NonFiniteKnot {
         /// Index of the knot.
@@ -86,6 +134,19 @@ pub enum Error {
         /// The number of control points given.
         points: usize,
     },
+    /// Degree elevation would make the degree `degree + times` larger than
+    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE) (or
+    /// overflow).
+    ElevationTooHigh {
+        /// The curve's degree.
+        degree: usize,
+        /// How many times elevation was asked for.
+        times: usize,
+        /// The largest degree elevation may produce.
+        max: usize,
+    },
+
+    // Parameters, query points and derivatives.
     /// A parameter value is NaN or lies outside the interval where the operation
     /// is defined.
     ParameterOutOfDomain {
@@ -94,16 +155,34 @@ pub enum Error {
         /// The interval it must lie in (inclusive).
         domain: (f64, f64),
     },
-    /// The operation needs a piecewise polynomial curve (one that provides
-    /// [`Curve::bezier_spans`](crate::Curve::bezier_spans)).
-    NotPiecewisePolynomial,
-    /// An output buffer is too short.
-    BufferLength {
-        /// The number of entries needed.
-        expected: usize,
-        /// The number of entries given.
-        found: usize,
+    /// A query point (nearest point) has a coordinate that is NaN,
+    /// infinite or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidQueryPoint {
+        /// Index of the coordinate.
+        coordinate: usize,
+        /// The offending value.
+        value: f64,
     },
+    /// A derivative of the curve could exceed
+    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE) in magnitude: knots
+    /// too close together for the control points' differences (or a degree
+    /// too high for the coordinates).
+    DerivativeOverflow {
+        /// The order of the derivative (`1 ..= degree`).
+        order: usize,
+    },
+    /// A derivative of an order beyond the supported
+    /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER) was asked
+    /// for (a rational curve's derivatives do not vanish above its degree;
+    /// each order costs time and memory).
+    DerivativeOrderTooHigh {
+        /// The order asked for.
+        order: usize,
+        /// The highest order supported.
+        max: usize,
+    },
+
+    // Tolerances and iteration caps.
     /// A tolerance is not a finite positive number.
     InvalidTolerance {
         /// The tolerance that was given.
@@ -117,7 +196,6 @@ pub enum Error {
         /// The smallest tolerance accepted for this object.
         min: f64,
     },
-    // -- Added for issue 16 by the lead: tolerances and profiles. --
     /// A tolerance is larger than the solver accepts.
     ToleranceTooLarge {
         /// The tolerance that was given.
@@ -132,6 +210,16 @@ pub enum Error {
         /// The largest cap accepted.
         max: u32,
     },
+
+    // Curves handed to an operation (profiles of revolutions, curves queried):
+    // what the operation needs of them, the `Curve` contract, the placement.
+    /// The operation needs a piecewise polynomial curve (one that provides
+    /// [`Curve::bezier_spans`](crate::Curve::bezier_spans)).
+    NotPiecewisePolynomial,
+    /// The operation needs a curve with rational Bézier spans (one whose
+    /// [`Curve::rational_bezier_spans`](crate::Curve::rational_bezier_spans)
+    /// is `Some`).
+    NotPiecewiseRational,
     /// A curve's domain is not a finite interval `(a, b)` with `a < b` (a
     /// user's curve that breaks the [`Curve`](crate::Curve) contract).
     InvalidDomain {
@@ -175,107 +263,8 @@ pub enum Error {
         /// The axis given.
         axis: nalgebra::Vector3<f64>,
     },
-    /// More segments were asked of [`Curve::try_discretize`](crate::Curve::try_discretize)
-    /// than [`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS).
-    TooManySegments {
-        /// The number of segments asked for.
-        segments: usize,
-        /// The largest number accepted.
-        max: usize,
-    },
-    /// Memory for a result could not be allocated.
-    AllocationFailed {
-        /// The number of bytes asked for (saturated at `usize::MAX`).
-        bytes: usize,
-    },
-    /// A derivative of the curve could exceed
-    /// [`MAX_DERIVATIVE`](crate::curve::MAX_DERIVATIVE) in magnitude: knots
-    /// too close together for the control points' differences (or a degree
-    /// too high for the coordinates).
-    DerivativeOverflow {
-        /// The order of the derivative (`1 ..= degree`).
-        order: usize,
-    },
-    /// A rational curve needs one weight per control point.
-    WeightCount {
-        /// The number of control points.
-        expected: usize,
-        /// The number of weights given.
-        found: usize,
-    },
-    /// A weight is zero, negative, NaN or infinite (weights must be
-    /// positive and finite).
-    InvalidWeight {
-        /// Index of the weight.
-        index: usize,
-        /// The offending weight.
-        weight: f64,
-    },
-    /// The largest weight is more than
-    /// [`MAX_WEIGHT_RATIO`](crate::curve::MAX_WEIGHT_RATIO) times the
-    /// smallest.
-    WeightRatioTooLarge {
-        /// Largest over smallest weight.
-        ratio: f64,
-        /// The limit.
-        max: f64,
-    },
-    // -- Added for issue 17 by h-nurbs: circles, arcs, derivative orders. --
-    /// A circle's or arc's radius is not a finite positive number at most
-    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
-    InvalidRadius {
-        /// The radius given.
-        radius: f64,
-    },
-    /// A circle's or arc's center has a NaN or infinite coordinate, or one
-    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
-    InvalidCenter {
-        /// The center given.
-        center: nalgebra::Point2<f64>,
-    },
-    /// An arc's sweep `end − start` (radians, counter-clockwise) is not in
-    /// `(0, 2π]`, or an angle is NaN or infinite.
-    InvalidSweep {
-        /// The start angle given.
-        start: f64,
-        /// The end angle given.
-        end: f64,
-    },
-    /// A derivative of an order beyond the supported
-    /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER) was asked
-    /// for (a rational curve's derivatives do not vanish above its degree;
-    /// each order costs time and memory).
-    DerivativeOrderTooHigh {
-        /// The order asked for.
-        order: usize,
-        /// The highest order supported.
-        max: usize,
-    },
-    // -- Added for issue 17 by h-queries: degree elevation, curve queries. --
-    /// Degree elevation would make the degree `degree + times` larger than
-    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE) (or
-    /// overflow).
-    ElevationTooHigh {
-        /// The curve's degree.
-        degree: usize,
-        /// How many times elevation was asked for.
-        times: usize,
-        /// The largest degree elevation may produce.
-        max: usize,
-    },
-    /// A query point (nearest point) has a coordinate that is NaN,
-    /// infinite or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
-    InvalidQueryPoint {
-        /// Index of the coordinate.
-        coordinate: usize,
-        /// The offending value.
-        value: f64,
-    },
-    /// The operation needs a curve with rational Bézier spans (one whose
-    /// [`Curve::rational_bezier_spans`](crate::Curve::rational_bezier_spans)
-    /// is `Some`).
-    NotPiecewiseRational,
-    // -- Added for issue 18 by h-surf: tensor-product surfaces. --
+
+    // Tensor-product surfaces and models made of patches.
     /// A grid of control points (or of weights) of a tensor-product surface
     /// has rows of different lengths: row `row` has `found` entries where
     /// the first row has `expected` (for weights: where the points' rows
@@ -290,11 +279,45 @@ pub enum Error {
     },
     /// A model made of patches was given none.
     NoPatches,
+
+    // Sizes of results and memory.
+    /// More segments were asked of [`Curve::try_discretize`](crate::Curve::try_discretize)
+    /// than [`MAX_SEGMENTS`](crate::curve::MAX_SEGMENTS).
+    TooManySegments {
+        /// The number of segments asked for.
+        segments: usize,
+        /// The largest number accepted.
+        max: usize,
+    },
+    /// An output buffer is too short.
+    BufferLength {
+        /// The number of entries needed.
+        expected: usize,
+        /// The number of entries given.
+        found: usize,
+    },
+    /// Memory for a result could not be allocated.
+    AllocationFailed {
+        /// The number of bytes asked for (saturated at `usize::MAX`).
+        bytes: usize,
+    },
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
+            Error::NoControlPoints => {
+                write!(f, "a curve needs at least one control point, got none")
+            }
+            Error::NonFinitePoint { index } => {
+                write!(f, "control point {index} has a NaN or infinite coordinate")
+            }
+            Error::CoordinateTooLarge { index, value } => write!(
+                f,
+                "control point {index} has coordinate {}, beyond the supported magnitude {}",
+                Num(value),
+                Num(MAX_COORDINATE)
+            ),
             Error::WeightCount { expected, found } => write!(
                 f,
                 "wrong weight count: expected {expected} (one per control point), found {found}"
@@ -310,24 +333,35 @@ impl fmt::Display for Error {
                 Num(ratio),
                 Num(max)
             ),
-            Error::NoControlPoints => {
-                write!(f, "a curve needs at least one control point, got none")
-            }
-            Error::NonFinitePoint { index } => {
-                write!(f, "control point {index} has a NaN or infinite coordinate")
-            }
-            Error::CoordinateTooLarge { index, value } => write!(
+            Error::InvalidRadius { radius } => write!(
                 f,
-                "control point {index} has coordinate {}, beyond the supported magnitude {}",
-                Num(value),
-                Num(crate::MAX_COORDINATE)
+                "radius {} is not a finite positive number at most {}",
+                Num(radius),
+                Num(MAX_COORDINATE)
+            ),
+            Error::InvalidCenter { center } => write!(
+                f,
+                "center ({}, {}) is not a finite point with coordinates at most {}",
+                Num(center.x),
+                Num(center.y),
+                Num(MAX_COORDINATE)
+            ),
+            Error::InvalidSweep { start, end } => write!(
+                f,
+                "arc from {} to {} radians: the sweep end − start must be a number in (0, 2π]",
+                Num(start),
+                Num(end)
             ),
             Error::NonFiniteKnot { index } => write!(f, "knot {index} is NaN or infinite"),
+            Error::KnotCount { expected, found } => write!(
+                f,
+                "wrong knot count: expected {expected} (points + degree + 1), found {found}"
+            ),
             Error::KnotTooLarge { index, value } => write!(
                 f,
                 "knot {index} is {}, beyond the supported magnitude {}",
                 Num(value),
-                Num(crate::MAX_COORDINATE)
+                Num(MAX_COORDINATE)
             ),
             Error::KnotGapTooSmall { index, gap, min } => write!(
                 f,
@@ -336,10 +370,6 @@ impl fmt::Display for Error {
                 index.saturating_sub(1),
                 Num(gap),
                 Num(min)
-            ),
-            Error::KnotCount { expected, found } => write!(
-                f,
-                "wrong knot count: expected {expected} (points + degree + 1), found {found}"
             ),
             Error::DecreasingKnots { index } => write!(
                 f,
@@ -368,6 +398,11 @@ impl fmt::Display for Error {
                 "degree {degree} needs at least {} control points, got {points}",
                 degree.saturating_add(1)
             ),
+            Error::ElevationTooHigh { degree, times, max } => write!(
+                f,
+                "elevating degree {degree} by {times} would exceed the largest supported \
+                 degree {max}"
+            ),
             Error::ParameterOutOfDomain { t, domain } => write!(
                 f,
                 "parameter {} is outside the domain [{}, {}]",
@@ -375,14 +410,22 @@ impl fmt::Display for Error {
                 Num(domain.0),
                 Num(domain.1)
             ),
-            Error::NotPiecewisePolynomial => write!(
+            Error::InvalidQueryPoint { coordinate, value } => write!(
                 f,
-                "this needs a piecewise polynomial profile (Bézier spans), as Bezier and \
-                 BSpline are"
+                "query point coordinate {coordinate} is {}; it must be finite and at most {} \
+                 in magnitude",
+                Num(value),
+                Num(MAX_COORDINATE)
             ),
-            Error::BufferLength { expected, found } => write!(
+            Error::DerivativeOverflow { order } => write!(
                 f,
-                "output buffer too short: needs {expected} entries, has {found}"
+                "the derivative of order {order} could exceed {} in magnitude: spread the \
+                 knots or bring the control points closer together",
+                Num(MAX_DERIVATIVE)
+            ),
+            Error::DerivativeOrderTooHigh { order, max } => write!(
+                f,
+                "derivative of order {order} asked for; the highest supported order is {max}"
             ),
             Error::InvalidTolerance { tolerance } => write!(
                 f,
@@ -409,6 +452,16 @@ impl fmt::Display for Error {
                 f,
                 "iteration cap {max_iterations} is outside the accepted range 1 to {max}"
             ),
+            Error::NotPiecewisePolynomial => write!(
+                f,
+                "this needs a piecewise polynomial profile (Bézier spans), as Bezier and \
+                 BSpline are"
+            ),
+            Error::NotPiecewiseRational => write!(
+                f,
+                "this needs a curve with rational Bézier spans (Curve::rational_bezier_spans), \
+                 as Bezier, BSpline and RationalBezier are"
+            ),
             Error::InvalidDomain { start, end } => write!(
                 f,
                 "the curve's domain ({}, {}) is not a finite interval with start < end",
@@ -420,7 +473,7 @@ impl fmt::Display for Error {
                 "the curve's point or derivative at t = {} is NaN, infinite or beyond the \
                  supported magnitude {}",
                 Num(t),
-                Num(crate::MAX_COORDINATE)
+                Num(MAX_COORDINATE)
             ),
             Error::SpansOutOfOrder { index } => write!(
                 f,
@@ -430,7 +483,7 @@ impl fmt::Display for Error {
             Error::SpanPointNotFinite { span } => write!(
                 f,
                 "Bézier span {span} has a NaN, infinite or too large control point (beyond {})",
-                Num(crate::MAX_COORDINATE)
+                Num(MAX_COORDINATE)
             ),
             Error::ProfileTooRough { pieces } => write!(
                 f,
@@ -447,60 +500,7 @@ impl fmt::Display for Error {
                 Num(axis.x),
                 Num(axis.y),
                 Num(axis.z),
-                Num(crate::MAX_COORDINATE)
-            ),
-            Error::TooManySegments { segments, max } => write!(
-                f,
-                "{segments} segments asked for, more than the {max} a discretization can have"
-            ),
-            Error::AllocationFailed { bytes } => {
-                write!(f, "could not allocate {bytes} bytes for the result")
-            }
-            Error::DerivativeOverflow { order } => write!(
-                f,
-                "the derivative of order {order} could exceed {} in magnitude: spread the \
-                 knots or bring the control points closer together",
-                Num(crate::curve::MAX_DERIVATIVE)
-            ),
-            Error::InvalidRadius { radius } => write!(
-                f,
-                "radius {} is not a finite positive number at most {}",
-                Num(radius),
-                Num(crate::MAX_COORDINATE)
-            ),
-            Error::InvalidCenter { center } => write!(
-                f,
-                "center ({}, {}) is not a finite point with coordinates at most {}",
-                Num(center.x),
-                Num(center.y),
-                Num(crate::MAX_COORDINATE)
-            ),
-            Error::InvalidSweep { start, end } => write!(
-                f,
-                "arc from {} to {} radians: the sweep end − start must be a number in (0, 2π]",
-                Num(start),
-                Num(end)
-            ),
-            Error::DerivativeOrderTooHigh { order, max } => write!(
-                f,
-                "derivative of order {order} asked for; the highest supported order is {max}"
-            ),
-            Error::ElevationTooHigh { degree, times, max } => write!(
-                f,
-                "elevating degree {degree} by {times} would exceed the largest supported \
-                 degree {max}"
-            ),
-            Error::InvalidQueryPoint { coordinate, value } => write!(
-                f,
-                "query point coordinate {coordinate} is {}; it must be finite and at most {} \
-                 in magnitude",
-                Num(value),
-                Num(crate::MAX_COORDINATE)
-            ),
-            Error::NotPiecewiseRational => write!(
-                f,
-                "this needs a curve with rational Bézier spans (Curve::rational_bezier_spans), \
-                 as Bezier, BSpline and RationalBezier are"
+                Num(MAX_COORDINATE)
             ),
             Error::RaggedGrid {
                 row,
@@ -514,6 +514,17 @@ impl fmt::Display for Error {
                 f,
                 "a model made of patches needs at least one patch, got none"
             ),
+            Error::TooManySegments { segments, max } => write!(
+                f,
+                "{segments} segments asked for, more than the {max} a discretization can have"
+            ),
+            Error::BufferLength { expected, found } => write!(
+                f,
+                "output buffer too short: needs {expected} entries, has {found}"
+            ),
+            Error::AllocationFailed { bytes } => {
+                write!(f, "could not allocate {bytes} bytes for the result")
+            }
         }
     }
 }
@@ -536,14 +547,6 @@ impl fmt::Display for Num {
     }
 }
 
-/// An empty vector with room for `len` elements, or
-/// [`Error::AllocationFailed`] when the memory cannot be had (instead of
-/// the process aborting).
-pub(crate) fn try_with_capacity<T>(len: usize) -> Result<Vec<T>, Error> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| Error::AllocationFailed {
-            bytes: len.saturating_mul(std::mem::size_of::<T>()),
-        })?;
-    Ok(v)
-}
+/// Re-exported for the modules that import it from here; it lives in
+/// `crate::allocation`.
+pub(crate) use crate::allocation::try_with_capacity;

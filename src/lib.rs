@@ -101,9 +101,11 @@
 pub use nalgebra;
 
 mod aabb;
+mod allocation;
 pub mod bernstein;
 pub mod curve;
 mod error;
+mod limits;
 mod mesh;
 pub mod ray;
 pub mod revolution;
@@ -116,18 +118,13 @@ pub mod tensor;
 #[cfg(feature = "testing")]
 pub mod testing;
 
-/// The largest control-point coordinate or knot magnitude accepted (`1e100`).
-///
-/// Far beyond any geometry, and small enough that differences, hodographs and
-/// squared distances of accepted values cannot overflow.
-pub const MAX_COORDINATE: f64 = 1e100;
-
 pub use aabb::Aabb;
 pub use curve::{
     ArcLength, BSpline, Bezier, BezierSpan, Curve, CurveProjector, CurveSample, Flattening,
     MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier, RationalBezierSpan,
 };
 pub use error::Error;
+pub use limits::MAX_COORDINATE;
 pub use mesh::Mesh;
 pub use ray::newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 pub use ray::{Hit, Intersect, Ray, Tolerance};

@@ -62,17 +62,61 @@
 use std::borrow::Cow;
 
 use nalgebra::{Point, Point3, Unit, Vector3};
-use serde::ser::Error as _;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer, de, ser};
 
 use crate::{
     Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Curve, Nurbs,
     NurbsSurface, RationalBezier, Ray, Revolution, Tolerance,
 };
 
-/// A crate error as the deserializer's error, with the crate's message.
-fn invalid<E: serde::de::Error>(e: crate::Error) -> E {
-    E::custom(e)
+/// A type written as its defining data and read back through its public
+/// constructor. `Serialize` writes [`written`](Self::written); `Deserialize`
+/// reads a [`Read`](Self::Read) and passes it to [`read`](Self::read), whose
+/// error (the constructor's, as the crate's [`Error`](crate::Error) message)
+/// becomes the deserializer's.
+trait DefiningData: Sized {
+    /// The data as written, borrowed from the value.
+    type Written<'a>
+    where
+        Self: 'a;
+    /// The data as read.
+    type Read;
+    /// The value's defining data, or why it cannot be written.
+    fn written<E: ser::Error>(&self) -> Result<Self::Written<'_>, E>;
+    /// The value built from its data by its public constructor.
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E>;
+}
+
+/// `Serialize` and `Deserialize` through [`DefiningData`], for each
+/// `[generic parameters] type`.
+macro_rules! serde_through_defining_data {
+    ($([$($generics:tt)*] $ty:ty;)*) => {$(
+        impl<$($generics)*> Serialize for $ty {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                self.written()?.serialize(serializer)
+            }
+        }
+
+        impl<'de, $($generics)*> Deserialize<'de> for $ty {
+            fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+                Self::read(<$ty as DefiningData>::Read::deserialize(deserializer)?)
+            }
+        }
+    )*};
+}
+
+serde_through_defining_data! {
+    [const D: usize] Bezier<D>;
+    [const D: usize] BSpline<D>;
+    [const D: usize] RationalBezier<D>;
+    [const D: usize] Nurbs<D>;
+    [] BezierSurface;
+    [] BezierPatches;
+    [] BSplineSurface;
+    [] NurbsSurface;
+    [] Tolerance;
+    [] Ray;
+    [] Aabb;
 }
 
 /// The defining data of a [`Bezier`]: borrowed when written, owned when read.
@@ -82,19 +126,16 @@ struct BezierData<'a, const D: usize> {
     points: Cow<'a, [Point<f64, D>]>,
 }
 
-impl<const D: usize> Serialize for Bezier<D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        BezierData {
+impl<const D: usize> DefiningData for Bezier<D> {
+    type Written<'a> = BezierData<'a, D>;
+    type Read = BezierData<'static, D>;
+    fn written<E: ser::Error>(&self) -> Result<BezierData<'_, D>, E> {
+        Ok(BezierData {
             points: Cow::Borrowed(self.points()),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de, const D: usize> Deserialize<'de> for Bezier<D> {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = BezierData::<D>::deserialize(deserializer)?;
-        Bezier::new(data.points.into_owned()).map_err(invalid)
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
+        Bezier::new(data.points.into_owned()).map_err(E::custom)
     }
 }
 
@@ -107,26 +148,19 @@ struct BSplineData<'a, const D: usize> {
     points: Cow<'a, [Point<f64, D>]>,
 }
 
-impl<const D: usize> Serialize for BSpline<D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        BSplineData {
+impl<const D: usize> DefiningData for BSpline<D> {
+    type Written<'a> = BSplineData<'a, D>;
+    type Read = BSplineData<'static, D>;
+    fn written<E: ser::Error>(&self) -> Result<BSplineData<'_, D>, E> {
+        Ok(BSplineData {
             degree: self.degree(),
             knots: Cow::Borrowed(self.knots()),
             points: Cow::Borrowed(self.points()),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de, const D: usize> Deserialize<'de> for BSpline<D> {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = BSplineData::<D>::deserialize(deserializer)?;
-        BSpline::new(
-            data.degree,
-            data.knots.into_owned(),
-            data.points.into_owned(),
-        )
-        .map_err(invalid)
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
+        let (knots, points) = (data.knots.into_owned(), data.points.into_owned());
+        BSpline::new(data.degree, knots, points).map_err(E::custom)
     }
 }
 
@@ -138,20 +172,17 @@ struct RationalBezierData<'a, const D: usize> {
     weights: Cow<'a, [f64]>,
 }
 
-impl<const D: usize> Serialize for RationalBezier<D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        RationalBezierData {
+impl<const D: usize> DefiningData for RationalBezier<D> {
+    type Written<'a> = RationalBezierData<'a, D>;
+    type Read = RationalBezierData<'static, D>;
+    fn written<E: ser::Error>(&self) -> Result<RationalBezierData<'_, D>, E> {
+        Ok(RationalBezierData {
             points: Cow::Borrowed(self.points()),
             weights: Cow::Borrowed(self.weights()),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de, const D: usize> Deserialize<'de> for RationalBezier<D> {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = RationalBezierData::<D>::deserialize(deserializer)?;
-        RationalBezier::new(data.points.into_owned(), data.weights.into_owned()).map_err(invalid)
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
+        RationalBezier::new(data.points.into_owned(), data.weights.into_owned()).map_err(E::custom)
     }
 }
 
@@ -165,29 +196,26 @@ struct NurbsData<'a, const D: usize> {
     weights: Cow<'a, [f64]>,
 }
 
-impl<const D: usize> Serialize for Nurbs<D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        NurbsData {
+impl<const D: usize> DefiningData for Nurbs<D> {
+    type Written<'a> = NurbsData<'a, D>;
+    type Read = NurbsData<'static, D>;
+    fn written<E: ser::Error>(&self) -> Result<NurbsData<'_, D>, E> {
+        Ok(NurbsData {
             degree: self.degree(),
             knots: Cow::Borrowed(self.knots()),
             points: Cow::Borrowed(self.points()),
             weights: Cow::Borrowed(self.weights()),
-        }
-        .serialize(serializer)
+        })
+    }
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
+        let (knots, points) = (data.knots.into_owned(), data.points.into_owned());
+        Nurbs::new(data.degree, knots, points, data.weights.into_owned()).map_err(E::custom)
     }
 }
 
-impl<'de, const D: usize> Deserialize<'de> for Nurbs<D> {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = NurbsData::<D>::deserialize(deserializer)?;
-        Nurbs::new(
-            data.degree,
-            data.knots.into_owned(),
-            data.points.into_owned(),
-            data.weights.into_owned(),
-        )
-        .map_err(invalid)
-    }
+/// Whether a tolerance is the default one (then it is not written).
+fn is_default(t: &Tolerance) -> bool {
+    *t == Tolerance::default()
 }
 
 /// The defining data of a [`BezierSurface`]: its control net, rows along `u`.
@@ -199,27 +227,19 @@ struct BezierSurfaceData<'a> {
     tolerance: Tolerance,
 }
 
-/// Whether a tolerance is the default one (then it is not written).
-fn is_default(t: &Tolerance) -> bool {
-    *t == Tolerance::default()
-}
-
-impl Serialize for BezierSurface {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        BezierSurfaceData {
+impl DefiningData for BezierSurface {
+    type Written<'a> = BezierSurfaceData<'a>;
+    type Read = BezierSurfaceData<'static>;
+    fn written<E: ser::Error>(&self) -> Result<BezierSurfaceData<'_>, E> {
+        Ok(BezierSurfaceData {
             points: Cow::Borrowed(self.points()),
             tolerance: *self.tolerance(),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for BezierSurface {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = BezierSurfaceData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
         BezierSurface::new(data.points.into_owned())
             .map(|s| s.with_tolerance(data.tolerance))
-            .map_err(invalid)
+            .map_err(E::custom)
     }
 }
 
@@ -232,22 +252,19 @@ struct BezierPatchesData<'a> {
     tolerance: Tolerance,
 }
 
-impl Serialize for BezierPatches {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        BezierPatchesData {
+impl DefiningData for BezierPatches {
+    type Written<'a> = BezierPatchesData<'a>;
+    type Read = BezierPatchesData<'static>;
+    fn written<E: ser::Error>(&self) -> Result<BezierPatchesData<'_>, E> {
+        Ok(BezierPatchesData {
             patches: Cow::Borrowed(self.patches()),
             tolerance: *self.tolerance(),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for BezierPatches {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = BezierPatchesData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
         BezierPatches::new(data.patches.into_owned())
             .map(|m| m.with_tolerance(data.tolerance))
-            .map_err(invalid)
+            .map_err(E::custom)
     }
 }
 
@@ -265,64 +282,54 @@ struct TensorSplineData<'a> {
     tolerance: Tolerance,
 }
 
-impl Serialize for BSplineSurface {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+impl DefiningData for BSplineSurface {
+    type Written<'a> = TensorSplineData<'a>;
+    type Read = TensorSplineData<'static>;
+    fn written<E: ser::Error>(&self) -> Result<TensorSplineData<'_>, E> {
         let (ku, kv) = self.knots();
-        TensorSplineData {
+        Ok(TensorSplineData {
             degrees: self.degrees(),
             knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
             points: Cow::Borrowed(self.points()),
             weights: None,
             tolerance: *self.tolerance(),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for BSplineSurface {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = TensorSplineData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
         if data.weights.is_some() {
-            return Err(serde::de::Error::custom(
+            return Err(E::custom(
                 "a B-spline surface has no weights (read it as a NurbsSurface)",
             ));
         }
         let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
         BSplineSurface::new(data.degrees, knots, data.points.into_owned())
             .map(|s| s.with_tolerance(data.tolerance))
-            .map_err(invalid)
+            .map_err(E::custom)
     }
 }
 
-impl Serialize for NurbsSurface {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+impl DefiningData for NurbsSurface {
+    type Written<'a> = TensorSplineData<'a>;
+    type Read = TensorSplineData<'static>;
+    fn written<E: ser::Error>(&self) -> Result<TensorSplineData<'_>, E> {
         let (ku, kv) = self.knots();
-        TensorSplineData {
+        Ok(TensorSplineData {
             degrees: self.degrees(),
             knots: (Cow::Borrowed(ku), Cow::Borrowed(kv)),
             points: Cow::Borrowed(self.points()),
             weights: Some(Cow::Borrowed(self.weights())),
             tolerance: *self.tolerance(),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for NurbsSurface {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = TensorSplineData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
         let Some(weights) = data.weights else {
-            return Err(serde::de::Error::missing_field("weights"));
+            return Err(E::missing_field("weights"));
         };
         let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
-        NurbsSurface::new(
-            data.degrees,
-            knots,
-            data.points.into_owned(),
-            weights.into_owned(),
-        )
-        .map(|s| s.with_tolerance(data.tolerance))
-        .map_err(invalid)
+        let (points, weights) = (data.points.into_owned(), weights.into_owned());
+        NurbsSurface::new(data.degrees, knots, points, weights)
+            .map(|s| s.with_tolerance(data.tolerance))
+            .map_err(E::custom)
     }
 }
 
@@ -334,20 +341,17 @@ struct ToleranceData {
     max_iterations: u32,
 }
 
-impl Serialize for Tolerance {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        ToleranceData {
+impl DefiningData for Tolerance {
+    type Written<'a> = ToleranceData;
+    type Read = ToleranceData;
+    fn written<E: ser::Error>(&self) -> Result<ToleranceData, E> {
+        Ok(ToleranceData {
             relative: self.relative,
             max_iterations: self.max_iterations,
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for Tolerance {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = ToleranceData::deserialize(deserializer)?;
-        Tolerance::new(data.relative, data.max_iterations).map_err(invalid)
+    fn read<E: de::Error>(data: ToleranceData) -> Result<Self, E> {
+        Tolerance::new(data.relative, data.max_iterations).map_err(E::custom)
     }
 }
 
@@ -362,32 +366,44 @@ struct RevolutionData<P> {
     tolerance: Tolerance,
 }
 
-impl<C: Curve<2> + Serialize> Serialize for Revolution<C> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+impl<C: Curve<2>> DefiningData for Revolution<C> {
+    type Written<'a>
+        = RevolutionData<&'a C>
+    where
+        C: 'a;
+    type Read = RevolutionData<C>;
+    fn written<E: ser::Error>(&self) -> Result<RevolutionData<&C>, E> {
         if let Some(e) = self.contract_error() {
-            return Err(S::Error::custom(format_args!(
+            return Err(E::custom(format_args!(
                 "a broken revolution cannot be written: {e}"
             )));
         }
-        RevolutionData {
+        Ok(RevolutionData {
             profile: self.profile(),
             origin: Point3::from(self.to_world().translation.vector),
             axis: *self.scaled_axis(),
             tolerance: *self.tolerance(),
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de, C: Curve<2> + Deserialize<'de>> Deserialize<'de> for Revolution<C> {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = RevolutionData::<C>::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: RevolutionData<C>) -> Result<Self, E> {
         // `try_with_axis` checks the axis itself (finite, not zero) and
         // brings it to unit length.
         Revolution::try_new(data.profile)
             .and_then(|r| r.try_with_axis(data.origin, Unit::new_unchecked(data.axis)))
             .map(|r| r.with_tolerance(data.tolerance))
-            .map_err(invalid)
+            .map_err(E::custom)
+    }
+}
+
+impl<C: Curve<2> + Serialize> Serialize for Revolution<C> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.written()?.serialize(serializer)
+    }
+}
+
+impl<'de, C: Curve<2> + Deserialize<'de>> Deserialize<'de> for Revolution<C> {
+    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        Self::read(RevolutionData::<C>::deserialize(deserializer)?)
     }
 }
 
@@ -399,19 +415,16 @@ struct RayData {
     dir: Vector3<f64>,
 }
 
-impl Serialize for Ray {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        RayData {
+impl DefiningData for Ray {
+    type Written<'a> = RayData;
+    type Read = RayData;
+    fn written<E: ser::Error>(&self) -> Result<RayData, E> {
+        Ok(RayData {
             origin: self.origin,
             dir: self.dir,
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for Ray {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = RayData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: RayData) -> Result<Self, E> {
         Ok(Ray::new(data.origin, data.dir))
     }
 }
@@ -425,19 +438,16 @@ struct AabbData {
     max: Point3<f64>,
 }
 
-impl Serialize for Aabb {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        AabbData {
+impl DefiningData for Aabb {
+    type Written<'a> = AabbData;
+    type Read = AabbData;
+    fn written<E: ser::Error>(&self) -> Result<AabbData, E> {
+        Ok(AabbData {
             min: self.min,
             max: self.max,
-        }
-        .serialize(serializer)
+        })
     }
-}
-
-impl<'de> Deserialize<'de> for Aabb {
-    fn deserialize<De: Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        let data = AabbData::deserialize(deserializer)?;
+    fn read<E: de::Error>(data: AabbData) -> Result<Self, E> {
         Ok(Aabb {
             min: data.min,
             max: data.max,

@@ -2,9 +2,11 @@
 //! bracket and an error estimate: the method and what is rigorous are in the
 //! docs of [`ArcLength`].
 
-use super::RationalBezierSpan;
-use super::homogeneous::{Homogeneous, project, project_with_derivative};
+use super::homogeneous::{
+    Homogeneous, homogeneous_points, max_weight, project, project_with_derivative,
+};
 use super::query::validate_spans;
+use super::{RationalBezierSpan, max_abs_coordinate};
 use crate::bernstein::{self, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
@@ -194,14 +196,8 @@ struct SpanSource<const D: usize> {
 impl<const D: usize> SpanSource<D> {
     fn new(span: &RationalBezierSpan<D>) -> Self {
         let weights = span.curve.weights();
-        let top = weights.iter().fold(0.0_f64, |m, &w| m.max(w));
-        let coeffs = span
-            .curve
-            .points()
-            .iter()
-            .zip(weights)
-            .map(|(p, &w)| Homogeneous::new(p, w / top))
-            .collect();
+        let top = max_weight(weights.iter().copied());
+        let coeffs = homogeneous_points(span.curve.points(), weights.iter().map(|&w| w / top));
         SpanSource { coeffs }
     }
 
@@ -211,11 +207,7 @@ impl<const D: usize> SpanSource<D> {
     /// `4(n + 1)²ε·max|P|·(w_max/w_min)`.
     fn rounding(span: &RationalBezierSpan<D>) -> f64 {
         let n = span.curve.degree() as f64;
-        let scale = span
-            .curve
-            .points()
-            .iter()
-            .fold(0.0_f64, |m, p| m.max(p.coords.amax()));
+        let scale = max_abs_coordinate(span.curve.points());
         let w = span.curve.weights();
         let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &x| {
             (lo.min(x), hi.max(x))

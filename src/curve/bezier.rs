@@ -5,7 +5,7 @@ use super::{
     NaturalSize, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain, point_bounds,
     tangent_from_derivatives, validate_points,
 };
-use crate::bernstein::{self, de_casteljau, differentiate_in_place, subdivide};
+use crate::bernstein::{self, nth_derivative_in_place, subdivide};
 use crate::scratch::with_scratch;
 use crate::{BezierSpan, Curve, Error};
 use nalgebra::{Point, SVector, Unit};
@@ -110,11 +110,7 @@ impl<const D: usize> Bezier<D> {
         }
         with_scratch(n, SVector::zeros(), |s| {
             s.copy_from_slice(&self.coeffs);
-            let mut len = n;
-            for _ in 0..order {
-                len = differentiate_in_place(&mut s[..len]);
-            }
-            de_casteljau(&mut s[..len], t).unwrap_or_else(SVector::zeros)
+            nth_derivative_in_place(s, order, t).unwrap_or_else(SVector::zeros)
         })
     }
 
@@ -210,13 +206,7 @@ impl<const D: usize> Curve<D> for Bezier<D> {
     /// Exact: the first non-negligible hodograph of order `1 … n`.
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
         let t = clamp_to_domain(t, (0.0, 1.0));
-        let n = self.degree();
-        let scale = self.coeffs.iter().fold(0.0_f64, |m, c| m.max(c.amax()));
-        let size = NaturalSize {
-            scale,
-            degree: n,
-            width: 1.0,
-        };
+        let size = NaturalSize::of_points(&self.points, self.degree(), 1.0);
         tangent_from_derivatives(size, t >= 1.0, |k| self.nth_derivative(t, k))
     }
 

@@ -1,5 +1,7 @@
-//! B-spline curves: knot validation, span search, de Boor evaluation, the
-//! Cox–de Boor basis, derivative splines, knot insertion and Bézier spans.
+//! B-spline curves: evaluation on the precomputed Bézier pieces and by de
+//! Boor's algorithm, the Cox–de Boor basis, derivative splines, knot
+//! insertion and Bézier spans (the knot-vector kernels are in `knots`,
+//! shared with the rational B-spline).
 //!
 //! Notation (Piegl & Tiller, *The NURBS Book*, ch. 2–5): degree `p`, control
 //! points `P₀ … P_{n−1}` (`n` of them), knots `t₀ ≤ … ≤ t_{n+p}` (`n + p + 1` of
@@ -7,12 +9,16 @@
 //! `[t_p, t_n]`, where the basis functions sum to one.
 
 use super::flatten::{Flattening, flatten_pieces};
+use super::knots::{
+    self, boehm_insert, check_degree, check_derivative_points, de_boor, derivative_control,
+    derivative_control_step, derivative_gap, validate_knots,
+};
 use super::pieces::PieceTable;
 use super::{
-    MAX_DERIVATIVE, NaturalSize, check_derivatives, check_in_domain, clamp_to_box, clamp_to_domain,
-    point_bounds, tangent_from_derivatives, validate_points,
+    NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain, point_bounds,
+    tangent_from_derivatives, validate_points,
 };
-use crate::bernstein::{self, lerp};
+use crate::bernstein::lerp;
 use crate::scratch::with_scratch;
 use crate::{Bezier, Curve, Error};
 use nalgebra::{Point, SVector, Unit};
@@ -97,12 +103,7 @@ impl<const D: usize> BSpline<D> {
     ) -> Result<Self, Error> {
         check_derivative_points(degree, &knots, &points)?;
         let curve = Self::from_valid_parts(degree, knots, points);
-        for j in 0..curve.pieces.len() {
-            let (a, b) = curve.pieces.interval(j);
-            let coeffs = curve.pieces.coeffs(j);
-            check_derivatives(coeffs, 1.0)?;
-            check_derivatives(coeffs, b - a)?;
-        }
+        curve.pieces.check_each(check_derivatives)?;
         Ok(curve)
     }
 
@@ -111,17 +112,12 @@ impl<const D: usize> BSpline<D> {
     /// The pieces' control points are blossoms, convex combinations of the
     /// span's control points, kept in their bounding box.
     fn from_valid_parts(degree: usize, knots: Vec<f64>, points: Vec<Point<f64, D>>) -> Self {
-        let n = points.len();
         let coords: Vec<SVector<f64, D>> = points.iter().map(|p| p.coords).collect();
-        let pieces = PieceTable::new(degree, &knots, n, SVector::zeros(), |span, out| {
-            let (a, b) = (knots[span], knots[span + 1]);
-            let hull = point_bounds(&points[span - degree..=span]);
-            let control = &coords[span - degree..=span];
-            for (r, dst) in out.iter_mut().enumerate() {
-                let value = blossom(&knots, control, degree, span, degree - r, a, b);
-                *dst = clamp_to_box(value, hull);
-            }
-        });
+        let pieces =
+            PieceTable::blossomed(degree, &knots, &coords, SVector::zeros(), |span, out| {
+                let hull = point_bounds(&points[span - degree..=span]);
+                out.iter_mut().for_each(|v| *v = clamp_to_box(*v, hull));
+            });
         Self {
             degree,
             knots,
@@ -139,10 +135,7 @@ impl<const D: usize> BSpline<D> {
     pub fn uniform(degree: usize, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
         check_degree(degree, points.len())?;
-        let last = (points.len() + degree) as f64;
-        let knots = (0..=points.len() + degree)
-            .map(|i| i as f64 / last)
-            .collect();
+        let knots = knots::uniform_knots(degree, points.len());
         Self::new(degree, knots, points)
     }
 
@@ -156,14 +149,7 @@ impl<const D: usize> BSpline<D> {
     pub fn clamped(degree: usize, points: Vec<Point<f64, D>>) -> Result<Self, Error> {
         validate_points(&points)?;
         check_degree(degree, points.len())?;
-        let spans = points.len() - degree;
-        let knots = (0..=points.len() + degree)
-            .map(|i| match i {
-                i if i <= degree => 0.0,
-                i if i >= points.len() => 1.0,
-                i => (i - degree) as f64 / spans as f64,
-            })
-            .collect();
+        let knots = knots::clamped_knots(degree, points.len());
         Self::new(degree, knots, points)
     }
 
@@ -200,7 +186,7 @@ impl<const D: usize> BSpline<D> {
 
     #[inline]
     fn span_of_clamped(&self, t: f64) -> usize {
-        self.pieces.span(self.pieces.locate(t))
+        self.pieces.span_at(t)
     }
 
     /// The point `C(t)` by de Boor's algorithm on the control points (the
@@ -231,8 +217,7 @@ impl<const D: usize> BSpline<D> {
                 derivative_control_step(knots, p, span, s, r);
             }
             let q = p - order;
-            de_boor_levels(knots, q, span, &mut s[..=q], t, q);
-            s[q]
+            de_boor(knots, q, span, &mut s[..=q], t)
         })
     }
 
@@ -350,9 +335,10 @@ impl<const D: usize> BSpline<D> {
         let mut points = Vec::with_capacity(n - 1);
         for (i, pair) in self.points.windows(2).enumerate() {
             // The basis function of Qᵢ lives on inner[i ..= i + p].
-            let den = inner[i + p] - inner[i];
-            if den > 0.0 {
-                points.push(Point::from((pair[1] - pair[0]) / den * p as f64));
+            let gap = derivative_gap(&self.knots, p, i, 1);
+            if gap > 0.0 {
+                let q = derivative_control(pair[0].coords, pair[1].coords, gap, p, 1);
+                points.push(Point::from(q));
                 knots.push(inner[i]);
             }
         }
@@ -394,12 +380,8 @@ impl<const D: usize> BSpline<D> {
     /// rounding broke the bound of [`new`](Self::new) (only for curves at
     /// that bound).
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<BSpline<D>, Error> {
-        let t = knot_to_insert(&self.knots, self.degree, self.domain(), t, times)?;
-        let mut curve = self.clone();
-        for _ in 0..times {
-            curve = curve.insert_once(t)?;
-        }
-        Ok(curve)
+        let knots = (&self.knots[..], self.degree, self.domain());
+        knots::insert_knot(self, knots, t, times, Self::insert_once)
     }
 
     /// One Boehm insertion ([`boehm_insert`]); the new points stay in the
@@ -422,18 +404,7 @@ impl<const D: usize> BSpline<D> {
     /// at construction by de Boor's algorithm with a different argument at
     /// each level (Ramshaw's blossoming principle).
     pub fn to_bezier_spans(&self) -> Vec<BezierSpan<D>> {
-        (0..self.pieces.len())
-            .map(|j| BezierSpan {
-                knots: self.pieces.interval(j),
-                curve: Bezier::from_valid_points(
-                    self.pieces
-                        .coeffs(j)
-                        .iter()
-                        .map(|&c| Point::from(c))
-                        .collect(),
-                ),
-            })
-            .collect()
+        self.pieces.bezier_spans(|&c| c)
     }
 
     /// Adaptive flattening of the whole curve (span by span) to `tolerance`,
@@ -456,7 +427,7 @@ impl<const D: usize> BSpline<D> {
 impl<const D: usize> Curve<D> for BSpline<D> {
     #[inline]
     fn domain(&self) -> (f64, f64) {
-        (self.knots[self.degree], self.knots[self.points.len()])
+        knots::domain(&self.knots, self.degree, self.points.len())
     }
 
     /// Finds the piece, then runs de Casteljau on its precomputed Bézier
@@ -464,10 +435,7 @@ impl<const D: usize> Curve<D> for BSpline<D> {
     #[inline]
     fn eval(&self, t: f64) -> Point<f64, D> {
         let t = clamp_to_domain(t, self.domain());
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let u = (t - a) / (b - a);
-        Point::from(bernstein::eval(self.pieces.coeffs(j), u).unwrap_or_else(SVector::zeros))
+        Point::from(self.pieces.eval(t).unwrap_or_else(SVector::zeros))
     }
 
     #[inline]
@@ -485,20 +453,9 @@ impl<const D: usize> Curve<D> for BSpline<D> {
     /// Boor on the control points' differences (repeated control points give
     /// exact zeros there). At an interior knot the limit is from the right.
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
-        let p = self.degree;
         let domain = self.domain();
         let t = clamp_to_domain(t, domain);
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let scale = self
-            .points
-            .iter()
-            .fold(0.0_f64, |m, c| m.max(c.coords.amax()));
-        let size = NaturalSize {
-            scale,
-            degree: p,
-            width: b - a,
-        };
+        let size = NaturalSize::of_points(&self.points, self.degree, self.pieces.width_at(t));
         tangent_from_derivatives(size, t >= domain.1, |k| self.nth_derivative(t, k))
     }
 
@@ -507,177 +464,11 @@ impl<const D: usize> Curve<D> for BSpline<D> {
     #[inline]
     fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
         let t = clamp_to_domain(t, self.domain());
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let w = b - a;
-        let (p, d) = bernstein::eval_with_derivative(self.pieces.coeffs(j), (t - a) / w)
+        let (p, d) = self
+            .pieces
+            .eval_with_derivative(t)
             .unwrap_or_else(|| (SVector::zeros(), SVector::zeros()));
-        (Point::from(p), d / w)
-    }
-}
-
-/// The blossom `f(a, …, a, b, …, b)` (`count_a` copies of `a`, the rest `b`)
-/// of the polynomial on knot span `span`, whose `p + 1` control values
-/// (global indices `span − p … span`) are `control`: de Boor's algorithm with
-/// argument `a` at the first `count_a` levels and `b` after. The values are
-/// vectors for a polynomial spline, homogeneous points for a rational one.
-pub(crate) fn blossom<T: crate::bernstein::Coefficient>(
-    knots: &[f64],
-    control: &[T],
-    p: usize,
-    span: usize,
-    count_a: usize,
-    a: f64,
-    b: f64,
-) -> T {
-    with_scratch(p + 1, control[0], |s| {
-        s.copy_from_slice(control);
-        blossom_in_place(knots, p, span, s, count_a, a, b)
-    })
-}
-
-/// [`blossom`] on control values already in `s` (overwritten).
-pub(crate) fn blossom_in_place<T: crate::bernstein::Coefficient>(
-    knots: &[f64],
-    p: usize,
-    span: usize,
-    s: &mut [T],
-    count_a: usize,
-    a: f64,
-    b: f64,
-) -> T {
-    for level in 1..=p {
-        let u = if level <= count_a { a } else { b };
-        de_boor_level(knots, p, span, s, u, level);
-    }
-    s[p]
-}
-
-/// The knot that inserting `t` `times` times into `knots` (degree `degree`,
-/// domain `domain`) inserts: `t` itself, or an existing knot within rounding
-/// (`4ε ×` the knot range) of it, so that the result satisfies the rules of
-/// [`BSpline::new`].
-///
-/// # Errors
-/// [`Error::ParameterOutOfDomain`] if `t` is NaN or outside the domain;
-/// [`Error::KnotMultiplicity`] if the knot would then occur more than
-/// `degree + 1` times.
-pub(crate) fn knot_to_insert(
-    knots: &[f64],
-    degree: usize,
-    domain: (f64, f64),
-    t: f64,
-    times: usize,
-) -> Result<f64, Error> {
-    check_in_domain(t, domain)?;
-    // A parameter closer to an existing knot than rounding can resolve
-    // (see `Error::KnotGapTooSmall`) is that knot.
-    let min_gap = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
-    let t = knots
-        .iter()
-        .copied()
-        .find(|&k| (k - t).abs() < min_gap)
-        .unwrap_or(t);
-    let existing = knots.iter().filter(|&&k| k == t).count();
-    let multiplicity = existing.saturating_add(times);
-    if multiplicity > degree + 1 {
-        return Err(Error::KnotMultiplicity {
-            knot: t,
-            multiplicity,
-            max: degree + 1,
-        });
-    }
-    Ok(t)
-}
-
-/// One Boehm insertion of the knot `t` into knot span `k`
-/// (`t_k ≤ t ≤ t_{k+1}`, a non-empty span): the new control values are
-/// `Qⱼ = combine(Pⱼ₋₁, Pⱼ, αⱼ)`, meant as `(1 − αⱼ)Pⱼ₋₁ + αⱼPⱼ` with
-/// `αⱼ = (t − tⱼ)/(tⱼ₊ₚ − tⱼ)`, for `k − p < j ≤ k`; the others are kept
-/// (Piegl & Tiller, eq. 5.15). Returns the new knots and control values.
-/// Generic over the control values: points of a polynomial spline, points
-/// with weights of a rational one.
-pub(crate) fn boehm_insert<T: Copy>(
-    knots: &[f64],
-    p: usize,
-    k: usize,
-    t: f64,
-    control: &[T],
-    combine: impl Fn(T, T, f64) -> T,
-) -> (Vec<f64>, Vec<T>) {
-    let mut values = Vec::with_capacity(control.len() + 1);
-    values.extend_from_slice(&control[..=k - p]);
-    for j in (k - p + 1)..=k {
-        let alpha = (t - knots[j]) / (knots[j + p] - knots[j]);
-        values.push(combine(control[j - 1], control[j], alpha));
-    }
-    values.extend_from_slice(&control[k..]);
-    let mut new_knots = Vec::with_capacity(knots.len() + 1);
-    new_knots.extend_from_slice(&knots[..=k]);
-    new_knots.push(t);
-    new_knots.extend_from_slice(&knots[k + 1..]);
-    (new_knots, values)
-}
-
-/// Replaces the control values of the `(r − 1)`-th derivative spline that act
-/// on `span`, in `s[..=p − r + 1]`, by those of the `r`-th, in `s[..=p − r]`:
-/// `Q⁽ʳ⁾ⱼ = (Q⁽ʳ⁻¹⁾ⱼ₊₁ − Q⁽ʳ⁻¹⁾ⱼ)/(t_{j+p+1} − t_{j+r})·(p − r + 1)` (Piegl &
-/// Tiller eq. 3.8; the knot difference contains the non-empty span, so it is
-/// positive). Generic: vectors for a polynomial spline, homogeneous points
-/// for a rational one.
-#[inline(always)]
-pub(crate) fn derivative_control_step<T>(
-    knots: &[f64],
-    p: usize,
-    span: usize,
-    s: &mut [T],
-    r: usize,
-) where
-    T: crate::bernstein::Coefficient + std::ops::Div<f64, Output = T>,
-{
-    let scale = (p - r + 1) as f64;
-    for j in 0..=(p - r) {
-        // Control value span − p + j of the r-th derivative spline.
-        let den = knots[span + j + 1] - knots[span - p + j + r];
-        s[j] = (s[j + 1] - s[j]) / den * scale;
-    }
-}
-
-/// Runs `levels` levels of de Boor's algorithm at `t` for degree `q` on
-/// `s[0..=q]`, which holds the coefficients with global indices
-/// `span − q … span`. After `q` levels `s[q]` is the value.
-#[inline(always)]
-pub(crate) fn de_boor_levels<T: crate::bernstein::Coefficient>(
-    knots: &[f64],
-    q: usize,
-    span: usize,
-    s: &mut [T],
-    t: f64,
-    levels: usize,
-) {
-    for level in 1..=levels {
-        de_boor_level(knots, q, span, s, t, level);
-    }
-}
-
-/// Level `level` of de Boor's algorithm at argument `u`: for local index
-/// `j = q … level` (global `l = span − q + j`),
-/// `sⱼ ← lerp(sⱼ₋₁, sⱼ, (u − t_l)/(t_{l+q+1−level} − t_l))`. The knot interval
-/// always contains the non-empty span, so the division is safe.
-#[inline(always)]
-fn de_boor_level<T: crate::bernstein::Coefficient>(
-    knots: &[f64],
-    q: usize,
-    span: usize,
-    s: &mut [T],
-    u: f64,
-    level: usize,
-) {
-    for j in (level..=q).rev() {
-        let l = span - q + j;
-        let lo = knots[l];
-        let hi = knots[l + q + 1 - level];
-        s[j] = lerp(s[j - 1], s[j], (u - lo) / (hi - lo));
+        (Point::from(p), d)
     }
 }
 
@@ -713,97 +504,6 @@ fn basis_up_to(
 #[inline]
 fn safe_div(num: f64, den: f64) -> f64 {
     if den > 0.0 { num / den } else { 0.0 }
-}
-
-/// Checks a knot vector for `n` control points of degree `degree`: the
-/// checks of [`BSpline::new`] after the points', in its order
-/// ([`Error::DegreeTooHigh`], [`Error::KnotCount`], [`Error::NonFiniteKnot`],
-/// [`Error::KnotTooLarge`], [`Error::DecreasingKnots`],
-/// [`Error::KnotGapTooSmall`], [`Error::KnotMultiplicity`],
-/// [`Error::EmptyDomain`]). Shared with the rational B-spline.
-pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), Error> {
-    if n <= degree {
-        return Err(Error::DegreeTooHigh { degree, points: n });
-    }
-    let expected = n + degree + 1;
-    if knots.len() != expected {
-        return Err(Error::KnotCount {
-            expected,
-            found: knots.len(),
-        });
-    }
-    for (index, &value) in knots.iter().enumerate() {
-        if !value.is_finite() {
-            return Err(Error::NonFiniteKnot { index });
-        }
-        if value.abs() > crate::MAX_COORDINATE {
-            return Err(Error::KnotTooLarge { index, value });
-        }
-    }
-    if let Some(index) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
-        return Err(Error::DecreasingKnots { index });
-    }
-    let min = 4.0 * f64::EPSILON * (knots[knots.len() - 1] - knots[0]);
-    for index in 1..knots.len() {
-        let gap = knots[index] - knots[index - 1];
-        if gap > 0.0 && gap < min {
-            return Err(Error::KnotGapTooSmall { index, gap, min });
-        }
-    }
-    for run in knots.chunk_by(|a, b| a == b) {
-        if run.len() > degree + 1 {
-            return Err(Error::KnotMultiplicity {
-                knot: run[0],
-                multiplicity: run.len(),
-                max: degree + 1,
-            });
-        }
-    }
-    let (start, end) = (knots[degree], knots[n]);
-    if start >= end {
-        return Err(Error::EmptyDomain { start, end });
-    }
-    Ok(())
-}
-
-/// Checks the control points of the derivative splines of orders
-/// `1 ..= degree`, computed as [`BSpline::nth_derivative`] computes them,
-/// `Q⁽ʳ⁾ᵢ = (Q⁽ʳ⁻¹⁾ᵢ₊₁ − Q⁽ʳ⁻¹⁾ᵢ)/(tᵢ₊ₚ₊₁ − tᵢ₊ᵣ)·(p − r + 1)`: each must be
-/// within [`MAX_DERIVATIVE`]. Points whose knot difference is zero (their basis
-/// function vanishes; no non-empty span uses them) are skipped, and so is
-/// everything computed from them.
-pub(crate) fn check_derivative_points<const D: usize>(
-    degree: usize,
-    knots: &[f64],
-    points: &[Point<f64, D>],
-) -> Result<(), Error> {
-    let mut q: Vec<Option<SVector<f64, D>>> = points.iter().map(|p| Some(p.coords)).collect();
-    for order in 1..=degree {
-        let scale = (degree - order + 1) as f64;
-        for i in 0..q.len() - 1 {
-            let den = knots[i + degree + 1] - knots[i + order];
-            q[i] = match (q[i], q[i + 1]) {
-                (Some(a), Some(b)) if den > 0.0 => {
-                    let d = (b - a) / den * scale;
-                    if !d.iter().all(|x| x.abs() <= MAX_DERIVATIVE) {
-                        return Err(Error::DerivativeOverflow { order });
-                    }
-                    Some(d)
-                }
-                _ => None,
-            };
-        }
-        q.pop();
-    }
-    Ok(())
-}
-
-fn check_degree(degree: usize, points: usize) -> Result<(), Error> {
-    if degree >= points {
-        Err(Error::DegreeTooHigh { degree, points })
-    } else {
-        Ok(())
-    }
 }
 
 fn check_buffer(found: usize, expected: usize) -> Result<(), Error> {

@@ -1,29 +1,24 @@
-//! Degree elevation: the same curve written with a higher degree.
+//! Degree elevation: the same curve written with a higher degree
+//! (`elevate_degree` on [`Bezier`], [`RationalBezier`], [`BSpline`] and
+//! [`Nurbs`]).
 //!
-//! A polynomial of degree `n` is also one of degree `n + k`. In Bernstein
-//! form its coefficients of degree `n + k` are (Farin, *Curves and Surfaces
-//! for CAGD*, degree elevation repeated `k` times in one formula)
-//!
-//! ```text
-//! Qᵢ = Σⱼ C(n, j)·C(k, i − j) / C(n + k, i) · Pⱼ,   i = 0 … n + k,
-//! ```
-//!
-//! the sum over `max(0, i − k) ≤ j ≤ min(n, i)`. The weights are positive
-//! and sum to one (Vandermonde's identity), so each `Qᵢ` is a convex
-//! combination of the `Pⱼ`: the computation is stable, and the new points
-//! stay in the old points' box.
+//! A polynomial of degree `n` is also one of degree `n + k`. Its Bernstein
+//! coefficients of degree `n + k` come from Farin's formula (the kernel
+//! `bernstein::elevate_degree`): convex combinations of the old ones, so the
+//! computation is stable and the new points stay in the old points' box.
+//! Rational curves are elevated on their homogeneous points, then divided.
 //!
 //! Splines are elevated by blossoming the elevated Bézier pieces at the new
 //! knots: the method, and why it was chosen over knot removal, are in the
 //! docs of [`BSpline::elevate_degree`].
 
-use super::bspline::blossom_in_place;
-use super::homogeneous::Homogeneous;
+use super::homogeneous::{homogeneous_points, max_weight, weight_scale};
+use super::knots::{nonempty_spans, span_bezier_points};
 use super::{clamp_to_box, point_bounds};
-use crate::bernstein::{Coefficient, binomial_row, lerp};
-use crate::error::try_with_capacity;
+use crate::allocation::try_with_capacity;
+use crate::bernstein::{Coefficient, elevate_degree, lerp};
 use crate::scratch::with_scratch;
-use crate::{BSpline, Bezier, Error, RationalBezier};
+use crate::{BSpline, Bezier, Error, Nurbs, RationalBezier};
 use nalgebra::{Point, SVector};
 
 /// The largest degree that degree elevation produces (`64`); asking for
@@ -43,27 +38,6 @@ pub(crate) fn elevated_degree(degree: usize, times: usize) -> Result<usize, Erro
             max: MAX_ELEVATED_DEGREE,
         }),
     }
-}
-
-/// The Bernstein coefficients of degree `n + times` of the polynomial with
-/// coefficients `points` (degree `n`), by Farin's formula (see the module
-/// docs). Empty for no points. The caller checks `times` with
-/// [`elevated_degree`].
-pub(crate) fn elevate_bezier<T: Coefficient>(points: &[T], times: usize) -> Vec<T> {
-    let Some(n) = points.len().checked_sub(1) else {
-        return Vec::new();
-    };
-    let q = n + times;
-    let (row_n, row_k, row_q) = (binomial_row(n), binomial_row(times), binomial_row(q));
-    (0..=q)
-        .map(|i| {
-            let (lo, hi) = (i.saturating_sub(times), i.min(n));
-            let weight = |j: usize| row_n[j] * row_k[i - j] / row_q[i];
-            (lo + 1..=hi).fold(points[lo] * weight(lo), |acc, j| {
-                acc + points[j] * weight(j)
-            })
-        })
-        .collect()
 }
 
 /// Elevates the B-spline of degree `degree`, knots `knots` and control
@@ -112,24 +86,15 @@ pub(crate) fn elevate_spline<T: Coefficient>(
 
     // Every non-empty span of the domain as an elevated Bézier piece
     // (q + 1 coefficients each), in order.
-    let spans: Vec<usize> = (p..n).filter(|&i| knots[i] < knots[i + 1]).collect();
+    let spans: Vec<usize> = nonempty_spans(knots, p, n).collect();
     let mut pieces = try_with_capacity(spans.len() * (q + 1))?;
+    let mut bezier = vec![points[0]; p + 1];
     for &i in &spans {
-        let (ka, kb) = (knots[i], knots[i + 1]);
-        let bezier: Vec<T> = (0..=p)
-            .map(|r| {
-                with_scratch(p + 1, points[0], |s| {
-                    s.copy_from_slice(&points[i - p..=i]);
-                    blossom_in_place(knots, p, i, s, p - r, ka, kb)
-                })
-            })
-            .collect();
-        pieces.extend(elevate_bezier(&bezier, times));
+        span_bezier_points(knots, p, i, &points[i - p..=i], &mut bezier);
+        pieces.extend(elevate_degree(&bezier, times));
     }
     // The same pieces as spans of the new knot vector.
-    let new_spans: Vec<usize> = (q..n_new)
-        .filter(|&l| new_knots[l] < new_knots[l + 1])
-        .collect();
+    let new_spans: Vec<usize> = nonempty_spans(&new_knots, q, n_new).collect();
     debug_assert_eq!(new_spans.len(), spans.len());
 
     let mut new_points = try_with_capacity(n_new)?;
@@ -184,8 +149,8 @@ impl<const D: usize> Bezier<D> {
     /// The same curve as a Bézier of degree `n + times` (`n + times + 1`
     /// control points), by Farin's elevation formula
     /// `Qᵢ = Σⱼ C(n, j) C(times, i − j) / C(n + times, i) · Pⱼ`. The
-    /// parametrization is unchanged: `elevate(k)?.eval(t) == eval(t)` to
-    /// rounding. The new points are convex combinations of the old ones,
+    /// parametrization is unchanged: `elevate_degree(k)?.eval(t) == eval(t)`
+    /// to rounding. The new points are convex combinations of the old ones,
     /// kept in their box.
     ///
     /// ```
@@ -194,7 +159,7 @@ impl<const D: usize> Bezier<D> {
     ///
     /// // A line elevated once gains its midpoint.
     /// let line = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(2.0, 4.0)])?;
-    /// let quadratic = line.elevate(1)?;
+    /// let quadratic = line.elevate_degree(1)?;
     /// assert_eq!(quadratic.points()[1], Point2::new(1.0, 2.0));
     /// assert!((quadratic.eval(0.3) - line.eval(0.3)).norm() < 1e-15);
     /// # Ok::<(), revolve::Error>(())
@@ -204,15 +169,25 @@ impl<const D: usize> Bezier<D> {
     /// [`Error::ElevationTooHigh`] beyond
     /// [`MAX_ELEVATED_DEGREE`]; otherwise as [`Bezier::new`] on the new
     /// points ([`Error::DerivativeOverflow`] only for a curve at that bound).
-    pub fn elevate(&self, times: usize) -> Result<Bezier<D>, Error> {
+    pub fn elevate_degree(&self, times: usize) -> Result<Bezier<D>, Error> {
         elevated_degree(self.degree(), times)?;
         let coords: Vec<SVector<f64, D>> = self.points().iter().map(|p| p.coords).collect();
         let bounds = point_bounds(self.points());
-        let points = elevate_bezier(&coords, times)
+        let points = elevate_degree(&coords, times)
             .into_iter()
             .map(|v| Point::from(clamp_to_box(v, bounds)))
             .collect();
         Bezier::new(points)
+    }
+
+    /// [`elevate_degree`](Self::elevate_degree) under its other name, kept
+    /// so that code calling it compiles.
+    ///
+    /// # Errors
+    /// As [`elevate_degree`](Self::elevate_degree).
+    #[deprecated(note = "renamed elevate_degree")]
+    pub fn elevate(&self, times: usize) -> Result<Bezier<D>, Error> {
+        self.elevate_degree(times)
     }
 }
 
@@ -236,7 +211,7 @@ impl<const D: usize> RationalBezier<D> {
     ///     vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0), Point2::new(0.0, 1.0)],
     ///     vec![1.0, h, 1.0],
     /// )?;
-    /// let cubic = quarter.elevate(1)?;
+    /// let cubic = quarter.elevate_degree(1)?;
     /// assert_eq!(cubic.degree(), 3);
     /// for k in 0..=10 {
     ///     let p = cubic.eval(k as f64 / 10.0);
@@ -248,17 +223,13 @@ impl<const D: usize> RationalBezier<D> {
     /// # Errors
     /// [`Error::ElevationTooHigh`] beyond [`MAX_ELEVATED_DEGREE`];
     /// otherwise as [`RationalBezier::new`] on the new points and weights.
-    pub fn elevate(&self, times: usize) -> Result<RationalBezier<D>, Error> {
+    pub fn elevate_degree(&self, times: usize) -> Result<RationalBezier<D>, Error> {
         elevated_degree(self.degree(), times)?;
-        let top = self.weights().iter().fold(0.0_f64, |m, &w| m.max(w));
-        let homogeneous: Vec<Homogeneous<D>> = self
-            .points()
-            .iter()
-            .zip(self.weights())
-            .map(|(p, &w)| Homogeneous::new(p, w / top))
-            .collect();
+        let top = max_weight(self.weights().iter().copied());
+        let homogeneous =
+            homogeneous_points(self.points(), self.weights().iter().map(|&w| w / top));
         let bounds = self.bounds();
-        let (mut points, weights): (Vec<_>, Vec<_>) = elevate_bezier(&homogeneous, times)
+        let (mut points, weights): (Vec<_>, Vec<_>) = elevate_degree(&homogeneous, times)
             .into_iter()
             .map(|h| (Point::from(clamp_to_box(h.wp / h.w, bounds)), h.w * top))
             .unzip();
@@ -267,6 +238,16 @@ impl<const D: usize> RationalBezier<D> {
         points[0] = first;
         points[self.degree() + times] = last;
         RationalBezier::new(points, weights)
+    }
+
+    /// [`elevate_degree`](Self::elevate_degree) under its other name, kept
+    /// so that code calling it compiles.
+    ///
+    /// # Errors
+    /// As [`elevate_degree`](Self::elevate_degree).
+    #[deprecated(note = "renamed elevate_degree")]
+    pub fn elevate(&self, times: usize) -> Result<RationalBezier<D>, Error> {
+        self.elevate_degree(times)
     }
 }
 
@@ -360,9 +341,53 @@ impl<const D: usize> BSpline<D> {
     }
 }
 
+impl<const D: usize> Nurbs<D> {
+    /// The same curve with its degree raised by `times`: the B-spline
+    /// elevation of [`BSpline::elevate_degree`] run on the homogeneous points
+    /// `(wᵢPᵢ, wᵢ)`, then divided back into points and weights. Every
+    /// interior knot's multiplicity grows by `times`; the ends are clamped
+    /// (full multiplicity), so every new homogeneous point is a convex
+    /// combination of the old ones and the weights stay positive.
+    ///
+    /// # Errors
+    /// [`Error::ElevationTooHigh`] beyond
+    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE); the
+    /// errors of [`new`](Self::new) should rounding break its bounds.
+    ///
+    /// ```
+    /// use revolve::{Curve, Nurbs};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let circle = Nurbs::circle(Point2::origin(), 2.0)?;
+    /// let cubic = circle.elevate_degree(1)?;
+    /// assert_eq!(cubic.degree(), 3);
+    /// for k in 0..=40 {
+    ///     let t = k as f64 / 40.0;
+    ///     assert!((cubic.eval(t).coords.norm() - 2.0).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn elevate_degree(&self, times: usize) -> Result<Nurbs<D>, Error> {
+        let scale = weight_scale(self.weights());
+        let homogeneous =
+            homogeneous_points(self.points(), self.weights().iter().map(|&w| w / scale));
+        let (knots, raised) = elevate_spline(self.degree(), self.knots(), &homogeneous, times)?;
+        let bounds = self.bounds();
+        let (points, weights) = raised
+            .iter()
+            .map(|h| {
+                let p = Point::from(clamp_to_box(h.wp / h.w, bounds));
+                (p, h.w * scale)
+            })
+            .unzip();
+        Nurbs::new(self.degree() + times, knots, points, weights)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::curve::Homogeneous;
     use nalgebra::{Point2, Vector1, Vector3};
 
     /// The raw new control points (before they are kept in the box) are

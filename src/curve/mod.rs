@@ -23,27 +23,34 @@
 mod arc_length;
 mod bezier;
 mod bspline;
+mod conic;
 mod elevate;
 mod flatten;
 mod homogeneous;
+mod knots;
 mod nurbs;
 mod pieces;
 mod query;
 mod rational_bezier;
 
+/// The Bézier elevation kernel under the name the tensor-product surfaces
+/// import it by.
+pub(crate) use crate::bernstein::elevate_degree as elevate_bezier;
 pub use arc_length::ArcLength;
 pub use bezier::Bezier;
 pub use bspline::{BSpline, BezierSpan};
-pub(crate) use bspline::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use elevate::MAX_ELEVATED_DEGREE;
-pub(crate) use elevate::{elevate_bezier, elevate_spline};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
+pub use homogeneous::MAX_DERIVATIVE_ORDER;
 pub(crate) use homogeneous::{Homogeneous, quotient_rule};
-pub use nurbs::{MAX_DERIVATIVE_ORDER, Nurbs};
+pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
+pub use nurbs::Nurbs;
 pub use query::{CurveProjector, NearestPoint};
 pub(crate) use rational_bezier::validate_weights;
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
+
+pub use crate::limits::MAX_DERIVATIVE;
 
 use crate::Error;
 use nalgebra::{Point, SVector, Unit};
@@ -51,12 +58,6 @@ use nalgebra::{Point, SVector, Unit};
 /// The most segments [`Curve::discretize`] makes (`2²⁴`, so at most
 /// `2²⁴ + 1` samples); [`Curve::try_discretize`] refuses more.
 pub const MAX_SEGMENTS: usize = 1 << 24;
-
-/// The largest derivative magnitude a [`Bezier`] or [`BSpline`] may have
-/// (`1e300`): constructors refuse curves whose derivatives of some order could
-/// exceed it ([`Error::DerivativeOverflow`]), so that every derivative of an
-/// accepted curve, of any order, is finite.
-pub const MAX_DERIVATIVE: f64 = 1e300;
 
 /// A parametric curve in `D` dimensions.
 ///
@@ -284,7 +285,7 @@ pub trait Curve<const D: usize> {
         }
         let segments = segments.max(1);
         let (a, b) = self.domain();
-        let mut samples = crate::error::try_with_capacity(segments + 1)?;
+        let mut samples = crate::allocation::try_with_capacity(segments + 1)?;
         samples.extend((0..=segments).map(|i| {
             let s = i as f64 / segments as f64;
             let t = match i {
@@ -364,6 +365,11 @@ pub(crate) fn point_bounds<const D: usize>(
     (Point::from(lo), Point::from(hi))
 }
 
+/// The largest absolute coordinate of the points (`0` for none).
+pub(crate) fn max_abs_coordinate<const D: usize>(points: &[Point<f64, D>]) -> f64 {
+    points.iter().fold(0.0_f64, |m, p| m.max(p.coords.amax()))
+}
+
 /// `v / |v|`, computed as `(v/m) / |v/m|` with `m` the largest absolute
 /// component, so that no size of `v` overflows or underflows the norm.
 /// `None` for the zero vector and for vectors with a NaN or infinite
@@ -400,6 +406,21 @@ pub(crate) struct NaturalSize {
 }
 
 impl NaturalSize {
+    /// The size for a piece of degree `degree` and parameter width `width`
+    /// of a curve with control points `points` (their largest absolute
+    /// coordinate is the scale).
+    pub(crate) fn of_points<const D: usize>(
+        points: &[Point<f64, D>],
+        degree: usize,
+        width: f64,
+    ) -> Self {
+        NaturalSize {
+            scale: max_abs_coordinate(points),
+            degree,
+            width,
+        }
+    }
+
     /// Whether `|v| > 1e-12 · size(k)`, for `v` with largest absolute
     /// component `m > 0` and `rel = |v/m|`. Compared directly when the size
     /// is a normal number, else in logarithms, so that neither side

@@ -1,4 +1,4 @@
-//! Rational B-spline curves (NURBS), and exact circles and arcs.
+//! Rational B-spline curves (NURBS).
 //!
 //! Notation as for [`BSpline`] (Piegl & Tiller, *The NURBS Book*, ch. 4):
 //! degree `p`, control points `P₀ … P_{n−1}` with weights `wᵢ > 0`, knots
@@ -11,31 +11,23 @@
 //! (blossoming, knot insertion, de Casteljau, hodographs) runs on the
 //! homogeneous points; the division comes last.
 
-use super::bspline::{
-    blossom, boehm_insert, check_derivative_points, de_boor_levels, derivative_control_step,
-    knot_to_insert, validate_knots,
-};
 use super::flatten::{Flattening, flatten_controls};
-use super::homogeneous::{project, project_with_derivative};
+use super::homogeneous::{
+    check_derivative_order, finish_derivatives, homogeneous_points, max_weight, one_derivative,
+    power_of_two_near, project, project_with_derivative, weight_scale,
+};
+use super::knots::{
+    self, boehm_insert, check_derivative_points, de_boor, derivative_control_step, validate_knots,
+};
 use super::pieces::PieceTable;
 use super::{
     Homogeneous, MAX_DERIVATIVE, NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain,
-    elevate_spline, point_bounds, quotient_rule, tangent_from_derivatives, validate_points,
-    validate_weights,
+    point_bounds, quotient_rule, tangent_from_derivatives, validate_points, validate_weights,
 };
-use crate::bernstein::{self, lerp};
+use crate::bernstein::lerp;
 use crate::scratch::with_scratch;
-use crate::{BSpline, Bezier, BezierSpan, Curve, Error, RationalBezier, RationalBezierSpan};
-use nalgebra::{Point, Point1, Point2, SVector, Unit, Vector1, Vector2};
-use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, TAU};
-use std::ops::Div;
-
-/// The highest derivative order [`Nurbs::derivatives`] and
-/// [`Nurbs::nth_derivative`] compute (`1024`). A rational curve's
-/// derivatives do not vanish above its degree, and order `k` costs `O(k²)`
-/// operations; beyond order ~170 they overflow for most curves anyway
-/// (they grow like `k!`).
-pub const MAX_DERIVATIVE_ORDER: usize = 1024;
+use crate::{BSpline, BezierSpan, Curve, Error, RationalBezier, RationalBezierSpan};
+use nalgebra::{Point, Point1, SVector, Unit, Vector1};
 
 /// A rational B-spline curve (NURBS) of any degree in `D` dimensions:
 /// `C(t) = Σᵢ wᵢPᵢNᵢ,ₚ(t) / Σᵢ wᵢNᵢ,ₚ(t)` with positive weights `wᵢ`, on the
@@ -164,12 +156,7 @@ impl<const D: usize> Nurbs<D> {
         check_derivative_points(degree, &curve.knots, &wp)?;
         let w: Vec<Point1<f64>> = curve.homogeneous.iter().map(|h| Point1::new(h.w)).collect();
         check_derivative_points(degree, &curve.knots, &w)?;
-        for j in 0..curve.pieces.len() {
-            let (a, b) = curve.pieces.interval(j);
-            let c = curve.pieces.coeffs(j);
-            check_piece(c, 1.0)?;
-            check_piece(c, b - a)?;
-        }
+        curve.pieces.check_each(check_piece)?;
         Ok(curve)
     }
 
@@ -185,30 +172,26 @@ impl<const D: usize> Nurbs<D> {
     ) -> Self {
         let polynomial = weights.iter().all(|&w| w == weights[0]);
         let scale = weight_scale(&weights);
-        let homogeneous: Vec<Homogeneous<D>> = points
-            .iter()
-            .zip(&weights)
-            .map(|(p, &w)| Homogeneous::new(p, if polynomial { 1.0 } else { w / scale }))
-            .collect();
-        let pieces = PieceTable::new(
+        let homogeneous = homogeneous_points(
+            &points,
+            weights
+                .iter()
+                .map(|&w| if polynomial { 1.0 } else { w / scale }),
+        );
+        let pieces = PieceTable::blossomed(
             degree,
             &knots,
-            points.len(),
+            &homogeneous,
             Homogeneous::zero(),
             |span, out| {
-                let (a, b) = (knots[span], knots[span + 1]);
-                let control = &homogeneous[span - degree..=span];
-                let hull = homogeneous_bounds(control);
-                for (r, dst) in out.iter_mut().enumerate() {
-                    let value = blossom(&knots, control, degree, span, degree - r, a, b);
-                    *dst = clamp_homogeneous(value, hull);
-                }
+                let hull = Homogeneous::bounds(&homogeneous[span - degree..=span]);
+                out.iter_mut().for_each(|h| *h = h.clamp(hull));
                 if polynomial {
                     // Equal weights stay exactly equal (and the points are
                     // the B-spline's Bézier points, computed as it does).
                     out.iter_mut().for_each(|h| h.w = 1.0);
                 } else {
-                    let scale = power_of_two_near(out.iter().fold(0.0_f64, |m, h| m.max(h.w)));
+                    let scale = power_of_two_near(max_weight(out.iter().map(|h| h.w)));
                     out.iter_mut().for_each(|h| *h = *h / scale);
                 }
             },
@@ -269,9 +252,9 @@ impl<const D: usize> Nurbs<D> {
     ///
     /// # Errors
     /// [`Error::DerivativeOrderTooHigh`] if `out.len() − 1` exceeds
-    /// [`MAX_DERIVATIVE_ORDER`]; [`Error::DerivativeOverflow`] with the first
-    /// order whose value is not finite (the values are written anyway, the
-    /// lower orders valid).
+    /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER);
+    /// [`Error::DerivativeOverflow`] with the first order whose value is not
+    /// finite (the values are written anyway, the lower orders valid).
     ///
     /// ```
     /// use revolve::Nurbs;
@@ -293,15 +276,10 @@ impl<const D: usize> Nurbs<D> {
         if orders == 0 {
             return Ok(());
         }
-        if orders - 1 > MAX_DERIVATIVE_ORDER {
-            return Err(Error::DerivativeOrderTooHigh {
-                order: orders - 1,
-                max: MAX_DERIVATIVE_ORDER,
-            });
-        }
+        check_derivative_order(orders - 1)?;
         let p = self.degree;
         let t = clamp_to_domain(t, self.domain());
-        let span = self.pieces.span(self.pieces.locate(t));
+        let span = self.pieces.span_at(t);
         let knots = &self.knots;
         with_scratch(orders + 2 * (p + 1), Homogeneous::zero(), |s| {
             let (h, rest) = s.split_at_mut(orders);
@@ -317,8 +295,7 @@ impl<const D: usize> Nurbs<D> {
                 }
                 let q = p - k;
                 work[..=q].copy_from_slice(&control[..=q]);
-                de_boor_levels(knots, q, span, &mut work[..=q], t, q);
-                *hk = work[q];
+                *hk = de_boor(knots, q, span, &mut work[..=q], t);
             }
             if self.polynomial {
                 for (o, hk) in out.iter_mut().zip(h.iter()) {
@@ -328,11 +305,7 @@ impl<const D: usize> Nurbs<D> {
                 quotient_rule(h, out);
             }
         });
-        out[0] = clamp_to_box(out[0], self.bounds);
-        match out.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
-            Some(order) => Err(Error::DerivativeOverflow { order }),
-            None => Ok(()),
-        }
+        finish_derivatives(out, self.bounds)
     }
 
     /// The `order`-th derivative `dᵏC/dtᵏ` at `t` (order 0 is the point as a
@@ -355,64 +328,11 @@ impl<const D: usize> Nurbs<D> {
     /// # Ok::<(), revolve::Error>(())
     /// ```
     pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
-        if order > MAX_DERIVATIVE_ORDER {
-            return Err(Error::DerivativeOrderTooHigh {
-                order,
-                max: MAX_DERIVATIVE_ORDER,
-            });
-        }
+        check_derivative_order(order)?;
         if self.polynomial && order > self.degree {
             return Ok(SVector::zeros());
         }
-        with_scratch(order + 1, SVector::zeros(), |out| {
-            self.derivatives(t, out)?;
-            Ok(out[order])
-        })
-    }
-
-    /// The same curve with its degree raised by `times`: the B-spline
-    /// elevation of [`BSpline::elevate_degree`] run on the homogeneous points
-    /// `(wᵢPᵢ, wᵢ)`, then divided back into points and weights. Every
-    /// interior knot's multiplicity grows by `times`; the ends are clamped
-    /// (full multiplicity), so every new homogeneous point is a convex
-    /// combination of the old ones and the weights stay positive.
-    ///
-    /// # Errors
-    /// [`Error::ElevationTooHigh`] beyond
-    /// [`MAX_ELEVATED_DEGREE`](crate::curve::MAX_ELEVATED_DEGREE); the
-    /// errors of [`new`](Self::new) should rounding break its bounds.
-    ///
-    /// ```
-    /// use revolve::{Curve, Nurbs};
-    /// use revolve::nalgebra::Point2;
-    ///
-    /// let circle = Nurbs::circle(Point2::origin(), 2.0)?;
-    /// let cubic = circle.elevate_degree(1)?;
-    /// assert_eq!(cubic.degree(), 3);
-    /// for k in 0..=40 {
-    ///     let t = k as f64 / 40.0;
-    ///     assert!((cubic.eval(t).coords.norm() - 2.0).abs() < 1e-14);
-    /// }
-    /// # Ok::<(), revolve::Error>(())
-    /// ```
-    pub fn elevate_degree(&self, times: usize) -> Result<Nurbs<D>, Error> {
-        let scale = weight_scale(&self.weights);
-        let homogeneous: Vec<Homogeneous<D>> = self
-            .points
-            .iter()
-            .zip(&self.weights)
-            .map(|(p, &w)| Homogeneous::new(p, w / scale))
-            .collect();
-        let (knots, raised) = elevate_spline(self.degree, &self.knots, &homogeneous, times)?;
-        let bounds = point_bounds(&self.points);
-        let (points, weights) = raised
-            .iter()
-            .map(|h| {
-                let p = Point::from(clamp_to_box(h.wp / h.w, bounds));
-                (p, h.w * scale)
-            })
-            .unzip();
-        Nurbs::new(self.degree + times, knots, points, weights)
+        one_derivative(order, |out| self.derivatives(t, out))
     }
 
     /// Inserts the knot `t` `times` times (Boehm's algorithm on the
@@ -444,18 +364,14 @@ impl<const D: usize> Nurbs<D> {
     /// # Ok::<(), revolve::Error>(())
     /// ```
     pub fn insert_knot(&self, t: f64, times: usize) -> Result<Nurbs<D>, Error> {
-        let t = knot_to_insert(&self.knots, self.degree, self.domain(), t, times)?;
-        let mut curve = self.clone();
-        for _ in 0..times {
-            curve = curve.insert_once(t)?;
-        }
-        Ok(curve)
+        let knots = (&self.knots[..], self.degree, self.domain());
+        knots::insert_knot(self, knots, t, times, Self::insert_once)
     }
 
     /// One Boehm insertion of `t` (a valid knot to insert).
     fn insert_once(&self, t: f64) -> Result<Nurbs<D>, Error> {
         let p = self.degree;
-        let k = self.pieces.span(self.pieces.locate(t));
+        let k = self.pieces.span_at(t);
         let scale = weight_scale(&self.weights);
         let control: Vec<(Point<f64, D>, f64)> = self
             .points
@@ -570,146 +486,6 @@ impl<const D: usize> Nurbs<D> {
     }
 }
 
-impl Nurbs<2> {
-    /// The whole circle of the given center and radius, exactly: degree 2,
-    /// nine control points (the corners and edge midpoints of the square
-    /// about it, starting at angle 0 and running counter-clockwise), weights
-    /// `1, √2/2, 1, √2/2, …` and knots `[0, 0, 0, ¼, ¼, ½, ½, ¾, ¾, 1, 1, 1]`:
-    /// four rational quarter arcs (Piegl & Tiller §7.5). The parametrization
-    /// is not by arc length; `C(0) = C(1) = center + (radius, 0)`,
-    /// `C(¼) = center + (0, radius)`.
-    ///
-    /// # Errors
-    /// [`Error::InvalidCenter`] for a center with a NaN, infinite or too
-    /// large coordinate; [`Error::InvalidRadius`] for a radius that is not
-    /// finite and positive or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE);
-    /// [`Error::CoordinateTooLarge`] if a control point (up to `radius` from
-    /// the center in each coordinate) lies beyond it.
-    ///
-    /// ```
-    /// use revolve::{Curve, Nurbs};
-    /// use revolve::nalgebra::Point2;
-    ///
-    /// let c = Nurbs::circle(Point2::new(0.0, 0.0), 3.0)?;
-    /// assert_eq!(c.eval(0.25), Point2::new(0.0, 3.0));
-    /// assert!((c.eval(0.6).coords.norm() - 3.0).abs() < 1e-15);
-    /// # Ok::<(), revolve::Error>(())
-    /// ```
-    pub fn circle(center: Point2<f64>, radius: f64) -> Result<Nurbs<2>, Error> {
-        check_circle(center, radius)?;
-        let r = radius;
-        let offsets = [
-            (r, 0.0),
-            (r, r),
-            (0.0, r),
-            (-r, r),
-            (-r, 0.0),
-            (-r, -r),
-            (0.0, -r),
-            (r, -r),
-            (r, 0.0),
-        ];
-        let points = offsets
-            .iter()
-            .map(|&(x, y)| center + Vector2::new(x, y))
-            .collect();
-        let weights = (0..9)
-            .map(|i| if i % 2 == 0 { 1.0 } else { FRAC_1_SQRT_2 })
-            .collect();
-        Self::conic_pieces(points, weights)
-    }
-
-    /// The arc of the circle of the given center and radius from angle
-    /// `start` to angle `end` (radians, counter-clockwise), on the domain
-    /// `[0, 1]`.
-    ///
-    /// The sweep `end − start` must lie in `(0, 2π]`; a sweep of `2π` is the
-    /// full circle starting (and ending, exactly) at `start`, and a sweep
-    /// within the rounding of the angles (`2ε·max(|start|, |end|)`) of `2π`,
-    /// below or above, counts as `2π` (so `arc(c, r, a, a + TAU)` is a full
-    /// turn for any `a`). The arc is split into `m = ⌈sweep/(π/2)⌉` equal pieces,
-    /// each a rational quadratic Bézier (Piegl & Tiller §7.5) with end points
-    /// `center + radius·uᵢ` on the circle (`uᵢ = (cos θᵢ, sin θᵢ)`), middle
-    /// point on the bisector at distance `radius/cos(φ/2)` from the center and
-    /// middle weight `cos(φ/2)`, `φ` the piece's angle; these are computed from
-    /// the two end directions as they are rounded
-    /// (`center + 2·radius·(uᵢ + uᵢ₊₁)/|uᵢ + uᵢ₊₁|²`, weight `|uᵢ + uᵢ₊₁|/2`),
-    /// so each piece is exactly the circular arc between its rounded end
-    /// points. The interior knots `i/m` are double; the arc starts at angle
-    /// `start` at `t = 0` and ends at angle `end` at `t = 1`. An angle
-    /// within rounding (`4ε·max(|angle|, 1)`) of a multiple of `π/2` gives
-    /// the exact axis direction, so `arc(c, r, −π/2, π/2)` (a sphere's
-    /// profile) ends exactly on the axis, not `6e-17·r` off it.
-    ///
-    /// # Errors
-    /// As [`circle`](Self::circle) for the center and radius;
-    /// [`Error::InvalidSweep`] for a sweep that is not in `(0, 2π]` or an
-    /// angle that is NaN or infinite.
-    ///
-    /// ```
-    /// use revolve::{Curve, Nurbs};
-    /// use revolve::nalgebra::Point2;
-    /// use std::f64::consts::PI;
-    ///
-    /// // The upper half of the unit circle, from angle 0 to π: two quarter pieces.
-    /// let half = Nurbs::arc(Point2::origin(), 1.0, 0.0, PI)?;
-    /// assert_eq!(half.degree(), 2);
-    /// assert_eq!(half.points().len(), 5);
-    /// let p = half.eval(0.3);
-    /// assert!((p.coords.norm() - 1.0).abs() < 1e-15 && p.y > 0.0);
-    /// assert!(Nurbs::arc(Point2::origin(), 1.0, 1.0, 0.5).is_err());
-    /// # Ok::<(), revolve::Error>(())
-    /// ```
-    pub fn arc(center: Point2<f64>, radius: f64, start: f64, end: f64) -> Result<Nurbs<2>, Error> {
-        check_circle(center, radius)?;
-        let sweep = end - start;
-        let slack = 2.0 * f64::EPSILON * start.abs().max(end.abs());
-        if !(start.is_finite() && end.is_finite() && sweep > 0.0 && sweep <= TAU + slack) {
-            return Err(Error::InvalidSweep { start, end });
-        }
-        let full = sweep >= TAU - slack;
-        let sweep = if full { TAU } else { sweep };
-        let m = ((sweep / FRAC_PI_2).ceil() as usize).clamp(1, 4);
-        let step = sweep / m as f64;
-        let direction = axis_snapped_direction;
-        let first = direction(start);
-        let last = if full { first } else { direction(end) };
-        let mut points = Vec::with_capacity(2 * m + 1);
-        let mut weights = Vec::with_capacity(2 * m + 1);
-        let mut u0 = first;
-        for i in 0..m {
-            let u1 = if i + 1 == m {
-                last
-            } else {
-                direction(start + step * (i + 1) as f64)
-            };
-            let s = u0 + u1;
-            let s2 = s.norm_squared();
-            points.push(center + u0 * radius);
-            weights.push(1.0);
-            points.push(center + s * (2.0 * radius / s2));
-            weights.push(0.5 * s2.sqrt());
-            u0 = u1;
-        }
-        points.push(center + last * radius);
-        weights.push(1.0);
-        Self::conic_pieces(points, weights)
-    }
-
-    /// The degree-2 NURBS of `m = (points − 1)/2` rational quadratic pieces
-    /// on `[0, 1]`, with double interior knots `i/m`.
-    fn conic_pieces(points: Vec<Point2<f64>>, weights: Vec<f64>) -> Result<Nurbs<2>, Error> {
-        let m = (points.len() - 1) / 2;
-        let mut knots = vec![0.0; 3];
-        for i in 1..m {
-            let k = i as f64 / m as f64;
-            knots.extend([k, k]);
-        }
-        knots.extend([1.0; 3]);
-        Nurbs::new(2, knots, points, weights)
-    }
-}
-
 impl<const D: usize> From<BSpline<D>> for Nurbs<D> {
     /// The same curve with unit weights: its pieces are the B-spline's
     /// Bézier pieces, bit for bit.
@@ -727,7 +503,7 @@ impl<const D: usize> From<BSpline<D>> for Nurbs<D> {
 impl<const D: usize> Curve<D> for Nurbs<D> {
     #[inline]
     fn domain(&self) -> (f64, f64) {
-        (self.knots[self.degree], self.knots[self.points.len()])
+        knots::domain(&self.knots, self.degree, self.points.len())
     }
 
     /// Finds the piece, runs de Casteljau on its homogeneous points at
@@ -735,10 +511,7 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
     #[inline]
     fn eval(&self, t: f64) -> Point<f64, D> {
         let t = clamp_to_domain(t, self.domain());
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let h = bernstein::eval(self.pieces.coeffs(j), (t - a) / (b - a))
-            .unwrap_or_else(Homogeneous::zero);
+        let h = self.pieces.eval(t).unwrap_or_else(Homogeneous::zero);
         let p = if self.polynomial { h.wp } else { h.wp / h.w };
         Point::from(clamp_to_box(p, self.bounds))
     }
@@ -753,15 +526,14 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
     #[inline]
     fn eval_with_derivative(&self, t: f64) -> (Point<f64, D>, SVector<f64, D>) {
         let t = clamp_to_domain(t, self.domain());
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let width = b - a;
-        let (h, dh) = bernstein::eval_with_derivative(self.pieces.coeffs(j), (t - a) / width)
+        let (h, dh) = self
+            .pieces
+            .eval_with_derivative(t)
             .unwrap_or_else(|| (Homogeneous::zero(), Homogeneous::zero()));
         let (p, d) = if self.polynomial {
-            (h.wp, dh.wp / width)
+            (h.wp, dh.wp)
         } else {
-            let (p, d) = project_with_derivative(h, dh / width);
+            let (p, d) = project_with_derivative(h, dh);
             (p.coords, d)
         };
         (Point::from(clamp_to_box(p, self.bounds)), d)
@@ -771,20 +543,8 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
     /// the [`BSpline`] of its points); `None` otherwise (see
     /// [`rational_bezier_spans`](Curve::rational_bezier_spans)).
     fn bezier_spans(&self) -> Option<Vec<BezierSpan<D>>> {
-        self.polynomial.then(|| {
-            (0..self.pieces.len())
-                .map(|j| BezierSpan {
-                    knots: self.pieces.interval(j),
-                    curve: Bezier::from_valid_points(
-                        self.pieces
-                            .coeffs(j)
-                            .iter()
-                            .map(|h| Point::from(h.wp))
-                            .collect(),
-                    ),
-                })
-                .collect()
-        })
+        self.polynomial
+            .then(|| self.pieces.bezier_spans(|h: &Homogeneous<D>| h.wp))
     }
 
     /// The rational pieces ([`to_bezier_spans`](Nurbs::to_bezier_spans)).
@@ -800,82 +560,11 @@ impl<const D: usize> Curve<D> for Nurbs<D> {
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
         let domain = self.domain();
         let t = clamp_to_domain(t, domain);
-        let j = self.pieces.locate(t);
-        let (a, b) = self.pieces.interval(j);
-        let scale = self
-            .points
-            .iter()
-            .fold(0.0_f64, |m, c| m.max(c.coords.amax()));
-        let size = NaturalSize {
-            scale,
-            degree: self.degree,
-            width: b - a,
-        };
+        let size = NaturalSize::of_points(&self.points, self.degree, self.pieces.width_at(t));
         tangent_from_derivatives(size, t >= domain.1, |k| {
             self.nth_derivative(t, k)
                 .unwrap_or_else(|_| SVector::zeros())
         })
-    }
-}
-
-impl<const D: usize> Div<f64> for Homogeneous<D> {
-    type Output = Self;
-    /// Both coordinates divided by `s` (division, not multiplication by
-    /// `1/s`, which could overflow for tiny `s`).
-    #[inline(always)]
-    fn div(self, s: f64) -> Self {
-        Homogeneous {
-            wp: self.wp / s,
-            w: self.w / s,
-        }
-    }
-}
-
-/// The power of two by which the weights are divided: the largest weight
-/// becomes a number in `[1, 2)`, the others are scaled exactly.
-pub(crate) fn weight_scale(weights: &[f64]) -> f64 {
-    power_of_two_near(weights.iter().fold(0.0_f64, |m, &w| m.max(w)))
-}
-
-/// `2^⌊log₂ x⌋` for a positive finite `x` (subnormal ones too): a power of
-/// two within a factor 2 of `x`, by which division is exact. Rounding of the
-/// logarithm can only make it `x`'s neighbouring power, still within a
-/// factor 2.
-fn power_of_two_near(x: f64) -> f64 {
-    let e = (x.log2().floor() as i32).clamp(-1074, 1023);
-    if e >= -1022 {
-        f64::from_bits(((e + 1023) as u64) << 52)
-    } else {
-        f64::from_bits(1_u64 << (e + 1074))
-    }
-}
-
-/// The box of homogeneous points: `(min, max)` of `wP` per coordinate and of `w`.
-fn homogeneous_bounds<const D: usize>(h: &[Homogeneous<D>]) -> (Homogeneous<D>, Homogeneous<D>) {
-    h.iter().fold((h[0], h[0]), |(lo, hi), x| {
-        (
-            Homogeneous {
-                wp: lo.wp.inf(&x.wp),
-                w: lo.w.min(x.w),
-            },
-            Homogeneous {
-                wp: hi.wp.sup(&x.wp),
-                w: hi.w.max(x.w),
-            },
-        )
-    })
-}
-
-/// `h` moved into the box `(lo, hi)`: for a convex combination of the points
-/// whose box it is, this only removes rounding.
-#[inline]
-fn clamp_homogeneous<const D: usize>(
-    h: Homogeneous<D>,
-    (lo, hi): (Homogeneous<D>, Homogeneous<D>),
-) -> Homogeneous<D> {
-    Homogeneous {
-        wp: h.wp.sup(&lo.wp).inf(&hi.wp),
-        w: h.w.clamp(lo.w, hi.w),
     }
 }
 
@@ -922,37 +611,5 @@ fn check_piece<const D: usize>(c: &[Homogeneous<D>], width: f64) -> Result<(), E
         Ok(())
     } else {
         Err(Error::DerivativeOverflow { order: 1 })
-    }
-}
-
-/// Checks a circle's center and radius.
-fn check_circle(center: Point2<f64>, radius: f64) -> Result<(), Error> {
-    if !center
-        .iter()
-        .all(|c| c.is_finite() && c.abs() <= crate::MAX_COORDINATE)
-    {
-        return Err(Error::InvalidCenter { center });
-    }
-    if !(radius.is_finite() && radius > 0.0 && radius <= crate::MAX_COORDINATE) {
-        return Err(Error::InvalidRadius { radius });
-    }
-    Ok(())
-}
-
-/// `(cos θ, sin θ)`, exactly `(±1, 0)` or `(0, ±1)` when `θ` is within
-/// rounding (`4ε·max(|θ|, 1)`) of a multiple of `π/2` (where `cos` and `sin`
-/// of the rounded angle give `6e-17` instead of 0).
-fn axis_snapped_direction(angle: f64) -> Vector2<f64> {
-    let quarters = (angle / FRAC_PI_2).round();
-    let near = (angle - quarters * FRAC_PI_2).abs() <= 4.0 * f64::EPSILON * angle.abs().max(1.0);
-    if near && quarters.abs() < 1e15 {
-        match (quarters as i64).rem_euclid(4) {
-            0 => Vector2::new(1.0, 0.0),
-            1 => Vector2::new(0.0, 1.0),
-            2 => Vector2::new(-1.0, 0.0),
-            _ => Vector2::new(0.0, -1.0),
-        }
-    } else {
-        Vector2::new(angle.cos(), angle.sin())
     }
 }

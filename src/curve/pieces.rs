@@ -14,6 +14,12 @@
 //! `⌊(t − b₀)·m/(b_m − b₀)⌋` corrected by comparing with the neighbouring
 //! break points: constant time whatever the number of control points.
 
+use super::knots::{nonempty_spans, span_bezier_points};
+use crate::bernstein::{self, Coefficient};
+use crate::{Bezier, BezierSpan, Error};
+use nalgebra::{Point, SVector};
+use std::ops::Div;
+
 /// The Bézier pieces of a B-spline and how to find them. The control values
 /// `T` are vectors for a polynomial spline and homogeneous points for a
 /// rational one.
@@ -42,7 +48,7 @@ impl<T: Copy> PieceTable<T> {
         zero: T,
         mut bezier_points: impl FnMut(usize, &mut [T]),
     ) -> Self {
-        let spans: Vec<usize> = (degree..n).filter(|&i| knots[i] < knots[i + 1]).collect();
+        let spans: Vec<usize> = nonempty_spans(knots, degree, n).collect();
         let mut breaks: Vec<f64> = spans.iter().map(|&i| knots[i]).collect();
         breaks.push(knots[n]);
         let mut coeffs = vec![zero; spans.len() * (degree + 1)];
@@ -109,5 +115,103 @@ impl<T: Copy> PieceTable<T> {
     #[inline]
     pub(crate) fn coeffs(&self, j: usize) -> &[T] {
         &self.coeffs[j * self.width..(j + 1) * self.width]
+    }
+
+    /// The piece containing `t` (in the domain): its index and interval
+    /// `(a, b)`.
+    #[inline]
+    fn piece_at(&self, t: f64) -> (usize, (f64, f64)) {
+        let j = self.locate(t);
+        (j, self.interval(j))
+    }
+
+    /// The knot span index `i` of the piece containing `t` (in the domain).
+    #[inline]
+    pub(crate) fn span_at(&self, t: f64) -> usize {
+        self.span(self.locate(t))
+    }
+
+    /// The parameter width `b − a` of the piece containing `t` (in the
+    /// domain).
+    #[inline]
+    pub(crate) fn width_at(&self, t: f64) -> f64 {
+        let (_, (a, b)) = self.piece_at(t);
+        b - a
+    }
+
+    /// Calls `check(coeffs, 1.0)` and `check(coeffs, b − a)` for every
+    /// piece in order (the hodographs in the piece's own parameter and in
+    /// `t`), stopping at the first error.
+    pub(crate) fn check_each(
+        &self,
+        check: impl Fn(&[T], f64) -> Result<(), Error>,
+    ) -> Result<(), Error> {
+        for j in 0..self.len() {
+            let (a, b) = self.interval(j);
+            let c = self.coeffs(j);
+            check(c, 1.0)?;
+            check(c, b - a)?;
+        }
+        Ok(())
+    }
+
+    /// The pieces as [`BezierSpan`]s, each control value mapped to a point
+    /// by `point`.
+    pub(crate) fn bezier_spans<const D: usize>(
+        &self,
+        point: impl Fn(&T) -> SVector<f64, D>,
+    ) -> Vec<BezierSpan<D>> {
+        (0..self.len())
+            .map(|j| BezierSpan {
+                knots: self.interval(j),
+                curve: Bezier::from_valid_points(
+                    self.coeffs(j)
+                        .iter()
+                        .map(|c| Point::from(point(c)))
+                        .collect(),
+                ),
+            })
+            .collect()
+    }
+}
+
+impl<T: Coefficient> PieceTable<T> {
+    /// The table of a spline of degree `degree` on `knots` with control
+    /// values `control`: each non-empty span's Bézier points are the
+    /// blossoms of [`span_bezier_points`], then passed to
+    /// `finish(span, points)` (to keep them in the span's hull, scale them).
+    pub(crate) fn blossomed(
+        degree: usize,
+        knots: &[f64],
+        control: &[T],
+        zero: T,
+        mut finish: impl FnMut(usize, &mut [T]),
+    ) -> Self {
+        Self::new(degree, knots, control.len(), zero, |span, out| {
+            span_bezier_points(knots, degree, span, &control[span - degree..=span], out);
+            finish(span, out);
+        })
+    }
+
+    /// The value at `t` (in the domain): de Casteljau on the piece
+    /// containing it at `u = (t − a)/(b − a)`.
+    #[inline]
+    pub(crate) fn eval(&self, t: f64) -> Option<T> {
+        let (j, (a, b)) = self.piece_at(t);
+        bernstein::eval(self.coeffs(j), (t - a) / (b - a))
+    }
+
+    /// The value and the derivative in `t` at `t` (in the domain): one de
+    /// Casteljau pass on the piece at `u = (t − a)/w`, `w = b − a`, the
+    /// derivative in `u` divided by `w`.
+    #[inline]
+    pub(crate) fn eval_with_derivative(&self, t: f64) -> Option<(T, T)>
+    where
+        T: Div<f64, Output = T>,
+    {
+        let (j, (a, b)) = self.piece_at(t);
+        let w = b - a;
+        let (value, derivative) = bernstein::eval_with_derivative(self.coeffs(j), (t - a) / w)?;
+        Some((value, derivative / w))
     }
 }

@@ -3,6 +3,7 @@
 //! of [`CurveProjector`]; curves without spans get a sampled answer (see
 //! [`Curve::nearest_point`]).
 
+use super::homogeneous::max_weight;
 use super::{RationalBezier, RationalBezierSpan};
 use crate::bernstein::binomial_row;
 use crate::roots::{Root, find_roots_to};
@@ -172,7 +173,7 @@ impl<const D: usize> SpanForm<D> {
             let m = d.iter().fold(0.0_f64, |m, v| m.max(v.abs().sum()));
             (vec![1.0; n + 1], d, m)
         } else {
-            let top = curve.weights().iter().fold(0.0_f64, |m, &w| m.max(w));
+            let top = max_weight(curve.weights().iter().copied());
             let w: Vec<f64> = curve.weights().iter().map(|&w| w / top).collect();
             let (row_n, row_m) = (binomial_row(n), binomial_row(2 * n - 2));
             let mut d = vec![SVector::zeros(); 2 * n - 1];

@@ -1,13 +1,14 @@
 //! Rational Bézier curves: one piece of a NURBS curve, and exact conics.
 
-use super::homogeneous::{Homogeneous, project, project_with_derivative, quotient_rule};
-use super::nurbs::weight_scale;
+use super::homogeneous::{
+    Homogeneous, check_derivative_order, finish_derivatives, homogeneous_points, one_derivative,
+    project, project_with_derivative, quotient_rule, weight_scale,
+};
 use super::{
     NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain, point_bounds,
     tangent_from_derivatives, validate_points,
 };
-use crate::bernstein::{self, de_casteljau, differentiate_in_place};
-use crate::curve::MAX_DERIVATIVE_ORDER;
+use crate::bernstein::{self, nth_derivative_in_place};
 use crate::scratch::with_scratch;
 use crate::{Bezier, BezierSpan, Curve, Error};
 use nalgebra::{Point, SVector, Unit};
@@ -145,11 +146,7 @@ impl<const D: usize> RationalBezier<D> {
         // Divided by a power of two (exact), so that end points come out
         // exactly.
         let scale = weight_scale(&weights);
-        let homogeneous = points
-            .iter()
-            .zip(&weights)
-            .map(|(p, &w)| Homogeneous::new(p, w / scale))
-            .collect();
+        let homogeneous = homogeneous_points(&points, weights.iter().map(|&w| w / scale));
         let bounds = point_bounds(&points);
         RationalBezier {
             points,
@@ -200,7 +197,7 @@ impl<const D: usize> RationalBezier<D> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.homogeneous.len();
         let orders = out.len();
-        check_order(orders.saturating_sub(1))?;
+        check_derivative_order(orders.saturating_sub(1))?;
         with_scratch(orders + n, Homogeneous::zero(), |s| {
             let (h, work) = s.split_at_mut(orders);
             for (k, hk) in h.iter_mut().enumerate() {
@@ -210,21 +207,11 @@ impl<const D: usize> RationalBezier<D> {
                     continue;
                 }
                 work.copy_from_slice(&self.homogeneous);
-                let mut len = n;
-                for _ in 0..k {
-                    len = differentiate_in_place(&mut work[..len]);
-                }
-                *hk = de_casteljau(&mut work[..len], t).unwrap_or_else(Homogeneous::zero);
+                *hk = nth_derivative_in_place(work, k, t).unwrap_or_else(Homogeneous::zero);
             }
             quotient_rule(h, out);
         });
-        if let Some(first) = out.first_mut() {
-            *first = clamp_to_box(*first, self.bounds);
-        }
-        match out.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
-            Some(order) => Err(Error::DerivativeOverflow { order }),
-            None => Ok(()),
-        }
+        finish_derivatives(out, self.bounds)
     }
 
     /// The `order`-th derivative at `t` (order 0 is the point as a vector).
@@ -232,23 +219,9 @@ impl<const D: usize> RationalBezier<D> {
     /// # Errors
     /// As [`derivatives`](Self::derivatives).
     pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
-        check_order(order)?;
-        with_scratch(order + 1, SVector::zeros(), |out| {
-            self.derivatives(t, out)?;
-            Ok(out[order])
-        })
+        check_derivative_order(order)?;
+        one_derivative(order, |out| self.derivatives(t, out))
     }
-}
-
-/// Refuses derivative orders beyond [`MAX_DERIVATIVE_ORDER`].
-fn check_order(order: usize) -> Result<(), Error> {
-    if order > MAX_DERIVATIVE_ORDER {
-        return Err(Error::DerivativeOrderTooHigh {
-            order,
-            max: MAX_DERIVATIVE_ORDER,
-        });
-    }
-    Ok(())
 }
 
 impl<const D: usize> Curve<D> for RationalBezier<D> {
@@ -300,16 +273,7 @@ impl<const D: usize> Curve<D> for RationalBezier<D> {
     /// Exact: the first non-negligible derivative of order `1 … n`.
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
         let t = clamp_to_domain(t, (0.0, 1.0));
-        let n = self.degree();
-        let scale = self
-            .points
-            .iter()
-            .fold(0.0_f64, |m, p| m.max(p.coords.amax()));
-        let size = NaturalSize {
-            scale,
-            degree: n,
-            width: 1.0,
-        };
+        let size = NaturalSize::of_points(&self.points, self.degree(), 1.0);
         tangent_from_derivatives(size, t >= 1.0, |k| {
             self.nth_derivative(t, k)
                 .unwrap_or_else(|_| SVector::zeros())
