@@ -546,7 +546,3 @@ impl fmt::Display for Num {
         }
     }
 }
-
-/// Re-exported for the modules that import it from here; it lives in
-/// `crate::allocation`.
-pub(crate) use crate::allocation::try_with_capacity;

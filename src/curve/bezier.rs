@@ -7,7 +7,7 @@ use super::{
 };
 use crate::bernstein::{self, nth_derivative_in_place, subdivide};
 use crate::scratch::with_scratch;
-use crate::{BezierSpan, Curve, Error};
+use crate::{Curve, Error};
 use nalgebra::{Point, SVector, Unit};
 
 /// A Bézier curve `P(t) = Σᵢ Pᵢ Bᵢⁿ(t)`, `t ∈ [0, 1]`, of degree `n` (one less
@@ -37,6 +37,16 @@ pub struct Bezier<const D: usize> {
     points: Vec<Point<f64, D>>,
     /// The same points as vectors: the form the Bernstein kernels evaluate.
     coeffs: Vec<SVector<f64, D>>,
+}
+
+/// One polynomial piece of a B-spline as a Bézier curve: on the knot interval
+/// `knots = (a, b)` the spline equals `curve((t − a)/(b − a))`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BezierSpan<const D: usize> {
+    /// The knot interval `(a, b)` the piece covers, `a < b`.
+    pub knots: (f64, f64),
+    /// The piece as a Bézier curve over `[0, 1]`, of the spline's degree.
+    pub curve: Bezier<D>,
 }
 
 impl<const D: usize> Bezier<D> {

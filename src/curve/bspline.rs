@@ -20,7 +20,7 @@ use super::{
 };
 use crate::bernstein::lerp;
 use crate::scratch::with_scratch;
-use crate::{Bezier, Curve, Error};
+use crate::{BezierSpan, Curve, Error};
 use nalgebra::{Point, SVector, Unit};
 
 /// A B-spline curve of any degree in `D` dimensions.
@@ -58,16 +58,6 @@ pub struct BSpline<const D: usize> {
     points: Vec<Point<f64, D>>,
     /// The Bézier form of every non-empty span, computed at construction.
     pieces: PieceTable<SVector<f64, D>>,
-}
-
-/// One polynomial piece of a B-spline as a Bézier curve: on the knot interval
-/// `knots = (a, b)` the spline equals `curve((t − a)/(b − a))`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BezierSpan<const D: usize> {
-    /// The knot interval `(a, b)` the piece covers, `a < b`.
-    pub knots: (f64, f64),
-    /// The piece as a Bézier curve over `[0, 1]`, of the spline's degree.
-    pub curve: Bezier<D>,
 }
 
 impl<const D: usize> BSpline<D> {

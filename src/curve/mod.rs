@@ -32,13 +32,9 @@ mod nurbs;
 mod pieces;
 mod query;
 mod rational_bezier;
-
-/// The Bézier elevation kernel under the name the tensor-product surfaces
-/// import it by.
-pub(crate) use crate::bernstein::elevate_degree as elevate_bezier;
 pub use arc_length::ArcLength;
-pub use bezier::Bezier;
-pub use bspline::{BSpline, BezierSpan};
+pub use bezier::{Bezier, BezierSpan};
+pub use bspline::BSpline;
 pub use elevate::MAX_ELEVATED_DEGREE;
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};

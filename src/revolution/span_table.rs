@@ -342,7 +342,11 @@ fn split_span<T: Coefficient>(
 }
 /// The control points of the same Bézier curve one degree higher:
 /// `Qᵢ = (i/(n+1))·Pᵢ₋₁ + (1 − i/(n+1))·Pᵢ`, `i = 0 … n+1` (Farin, *Curves
-/// and Surfaces for CAGD*, §5.1).
+/// and Surfaces for CAGD*, §5.1). The same curve as
+/// [`elevate_degree`](crate::bernstein::elevate_degree) by one, but not the
+/// same bits: that kernel rounds each weight as a ratio of binomials, this
+/// one takes `1 − i/(n+1)` for the second, and the span table's hits are
+/// kept as they are.
 fn raise_degree<T: Coefficient>(points: &[T]) -> Vec<T> {
     let m = points.len() as f64;
     (0..=points.len())

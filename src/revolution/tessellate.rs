@@ -15,8 +15,8 @@
 //! of the mesh; the tolerance is split evenly between the two terms.
 
 use super::surface::profile_normal;
+use crate::allocation::try_with_capacity;
 use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
-use crate::error::try_with_capacity;
 use crate::{Curve, Error, Mesh, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 use std::f64::consts::{PI, TAU};

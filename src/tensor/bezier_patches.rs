@@ -6,7 +6,8 @@ use super::search::intersect;
 use super::search_pieces::SearchPieces;
 use super::tessellate::tessellate_patches;
 use crate::bernstein::Coefficient;
-use crate::curve::{Homogeneous, elevate_bezier};
+use crate::bernstein::elevate_degree;
+use crate::curve::Homogeneous;
 use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a
@@ -171,7 +172,7 @@ fn raised_net(surface: &BezierSurface, (p, q): (usize, usize)) -> Vec<Homogeneou
 
 /// The Bézier coefficients `c` raised to `degree` (`≥ c.len() − 1`).
 fn raise<T: Coefficient>(c: &[T], degree: usize) -> Vec<T> {
-    elevate_bezier(c, degree + 1 - c.len())
+    elevate_degree(c, degree + 1 - c.len())
 }
 
 impl Intersect for BezierPatches {

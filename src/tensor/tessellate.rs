@@ -84,9 +84,9 @@ use super::patch::{Patch, tensor_jet};
 use super::patch_table::PatchTable;
 use crate::Error;
 use crate::Mesh;
+use crate::allocation::try_with_capacity;
 use crate::bernstein::{self, Coefficient};
 use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE};
-use crate::error::try_with_capacity;
 use nalgebra::{Point3, Unit, Vector3};
 use std::collections::HashMap;
 

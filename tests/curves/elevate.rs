@@ -72,7 +72,7 @@ fn bezier_elevation_keeps_the_curve() {
         let times = 1 + rng.below(6);
         let points = random_points::<3>(&mut rng, degree + 1);
         let curve = Bezier::new(points.clone()).unwrap();
-        let up = curve.elevate(times).unwrap();
+        let up = curve.elevate_degree(times).unwrap();
         assert_eq!(up.degree(), degree + times);
         assert_eq!(up.points().len(), degree + times + 1);
         // The ends are the old ends, exactly.
@@ -98,7 +98,7 @@ fn monomials_elevate_to_their_closed_form_coefficients() {
         coeffs[k] = Point1::new(1.0);
         let monomial = Bezier::new(coeffs).unwrap();
         for n in k..=k + 9 {
-            let up = monomial.elevate(n - k).unwrap();
+            let up = monomial.elevate_degree(n - k).unwrap();
             for (i, p) in up.points().iter().enumerate() {
                 let want = choose(i, k) / choose(n, k);
                 assert!(
@@ -111,7 +111,7 @@ fn monomials_elevate_to_their_closed_form_coefficients() {
     }
     // A line elevated to degree k: the points are equally spaced on it.
     let line = Bezier::new(vec![Point2::new(-1.0, 2.0), Point2::new(3.0, -6.0)]).unwrap();
-    let up = line.elevate(7).unwrap();
+    let up = line.elevate_degree(7).unwrap();
     for (i, p) in up.points().iter().enumerate() {
         let s = i as f64 / 8.0;
         let want = Point2::new(-1.0 + 4.0 * s, 2.0 - 8.0 * s);
@@ -125,8 +125,8 @@ fn elevation_composes() {
     let mut rng = Rng(77);
     for degree in 0..8 {
         let curve = Bezier::new(random_points::<2>(&mut rng, degree + 1)).unwrap();
-        let once = curve.elevate(5).unwrap();
-        let steps = (0..5).fold(curve.clone(), |c, _| c.elevate(1).unwrap());
+        let once = curve.elevate_degree(5).unwrap();
+        let steps = (0..5).fold(curve.clone(), |c, _| c.elevate_degree(1).unwrap());
         for (a, b) in once.points().iter().zip(steps.points()) {
             assert!((a - b).norm() < 1e-15, "degree {degree}: {a} vs {b}");
         }
@@ -188,7 +188,7 @@ fn check_spline_elevation<const D: usize>(curve: &BSpline<D>, up: &BSpline<D>, t
     assert_eq!(old_spans.len(), new_spans.len());
     for (o, n) in old_spans.iter().zip(&new_spans) {
         assert_eq!(o.knots, n.knots);
-        let farin = o.curve.elevate(times).unwrap();
+        let farin = o.curve.elevate_degree(times).unwrap();
         for (x, y) in farin.points().iter().zip(n.curve.points()) {
             assert!(
                 (x - y).norm() <= 1e-13 * scale(curve.points()),
@@ -292,7 +292,7 @@ fn rational_quarter_circle_stays_on_the_circle() {
         )
         .unwrap();
         for times in 1..=8 {
-            let up = quarter.elevate(times).unwrap();
+            let up = quarter.elevate_degree(times).unwrap();
             assert_eq!(up.degree(), 2 + times);
             assert!(up.weights().iter().all(|&w| w > 0.0));
             for t in parameters((0.0, 1.0), 10_000) {
@@ -323,7 +323,7 @@ fn random_rational_beziers_elevate() {
             .collect();
         let curve = RationalBezier::new(points.clone(), weights).unwrap();
         let times = 1 + rng.below(5);
-        let up = curve.elevate(times).unwrap();
+        let up = curve.elevate_degree(times).unwrap();
         assert_eq!(up.degree(), degree + times);
         assert_eq!(up.points()[0], points[0]);
         assert_eq!(up.points()[degree + times], points[degree]);
@@ -337,23 +337,23 @@ fn elevation_limits_are_errors() {
     let mut rng = Rng(5);
     let high = Bezier::new(random_points::<2>(&mut rng, 61)).unwrap();
     assert_eq!(
-        high.elevate(5).unwrap_err(),
+        high.elevate_degree(5).unwrap_err(),
         Error::ElevationTooHigh {
             degree: 60,
             times: 5,
             max: MAX_ELEVATED_DEGREE
         }
     );
-    assert_eq!(high.elevate(4).unwrap().degree(), 64);
+    assert_eq!(high.elevate_degree(4).unwrap().degree(), 64);
     for times in [65, usize::MAX] {
         assert!(matches!(
-            Bezier::new(vec![Point3::origin()]).unwrap().elevate(times),
+            Bezier::new(vec![Point3::origin()]).unwrap().elevate_degree(times),
             Err(Error::ElevationTooHigh { .. })
         ));
     }
     // Elevating by zero is a copy at any degree.
     let very_high = Bezier::new(random_points::<2>(&mut rng, 101)).unwrap();
-    assert_eq!(very_high.elevate(0).unwrap(), very_high);
+    assert_eq!(very_high.elevate_degree(0).unwrap(), very_high);
     let spline = BSpline::clamped(3, random_points::<2>(&mut rng, 7)).unwrap();
     assert_eq!(spline.elevate_degree(0).unwrap(), spline);
     let err = spline.elevate_degree(usize::MAX).unwrap_err();
@@ -375,7 +375,7 @@ fn elevation_limits_are_errors() {
     )
     .unwrap();
     assert!(matches!(
-        quarter.elevate(63),
+        quarter.elevate_degree(63),
         Err(Error::ElevationTooHigh { degree: 2, .. })
     ));
 }

@@ -684,7 +684,7 @@ fn arc_length_of_lines_circles_and_parabolas() {
             let arc = rational_arc(r, theta);
             for tol in [1e-4 * r, 1e-10 * r, 1e-12 * r] {
                 check_length(&arc, tol, r * theta, 0.0, &format!("arc r={r} θ={theta}"));
-                let up = arc.elevate(3).unwrap();
+                let up = arc.elevate_degree(3).unwrap();
                 check_length(&up, tol, r * theta, 0.0, "elevated arc");
             }
         }
