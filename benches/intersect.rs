@@ -41,13 +41,13 @@
 
 #[path = "../tests/common/mod.rs"]
 mod common;
-#[path = "../examples/accuracy_cost/patch_shapes.rs"]
+#[path = "../studies/accuracy_cost/src/patch_shapes.rs"]
 mod patch_shapes;
 // The ray caster's pinhole camera (its module names it `crate::scene::Camera`).
-#[path = "../examples/raycast/camera.rs"]
+#[path = "../apps/raycast/src/camera.rs"]
 #[allow(dead_code)]
 mod camera;
-#[path = "../examples/raycast/scene.rs"]
+#[path = "../apps/raycast/src/scene.rs"]
 #[allow(dead_code)]
 mod scene;
 

@@ -3,7 +3,7 @@
 //! curve discretization.
 //!
 //! ```text
-//! cargo run --release --example accuracy_cost [-- --quick] [--out DIR]
+//! cargo run --release -p accuracy_cost [-- --quick] [--out DIR]
 //! ```
 //!
 //! On the vase (one cubic Bézier), the wine glass (a 25-point uniform
@@ -47,7 +47,7 @@
 
 mod batch;
 mod closed_form;
-#[path = "../../tests/common/mod.rs"]
+#[path = "../../../tests/common/mod.rs"]
 mod common;
 mod course;
 mod curves;
