@@ -22,7 +22,7 @@
 //! mutants.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -291,7 +291,7 @@ struct Base {
 /// The bundled scenes, comments stripped (so tokens can be rejoined on one
 /// line without commenting out the rest of the file).
 fn bases() -> Vec<Base> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let dir = crate::repo_root().join("scenes");
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("the scenes folder")
         .map(|e| e.expect("a scenes entry").path())

@@ -12,10 +12,11 @@
 //! regions and fails both.
 //!
 //! Regenerate after an intended change with
-//! `cargo run --release --example raycast -- scenes/NAME.txt -o scenes/golden/NAME.png`
+//! `cargo run --release -p raycast -- scenes/NAME.txt -o scenes/golden/NAME.png`
+//! (from the repository's root)
 //! and look at the difference before committing.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::effects::Effects;
 use crate::image_out::to_rgb8;
@@ -35,7 +36,7 @@ const BASE_SCENES: [&str; 7] = [
 ];
 
 fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")
+    crate::repo_root().join("scenes")
 }
 
 /// Pixel counts `(over 2/255, over 64/255)` between two images of one size.

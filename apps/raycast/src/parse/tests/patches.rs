@@ -2,7 +2,6 @@
 //! one-based indices row by row, vertices, comments), the bundled teapot,
 //! and every malformed file, reported at the path with the file's line.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use revolve::BezierSurface;
@@ -138,7 +137,7 @@ fn teapot_by_hand(text: &str) -> Vec<Vec<Vec<Point3<f64>>>> {
 
 #[test]
 fn the_bundled_teapot_has_its_32_bicubic_patches() {
-    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let scenes = crate::repo_root().join("scenes");
     let text = std::fs::read_to_string(scenes.join("data/teapot.txt")).unwrap();
     let scene = parse_str(&model_scene("data/teapot.txt"), &scenes.join("test.txt"))
         .unwrap_or_else(|e| panic!("{e}"));

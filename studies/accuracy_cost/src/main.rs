@@ -3,7 +3,7 @@
 //! curve discretization.
 //!
 //! ```text
-//! cargo run --release --example accuracy_cost [-- --quick] [--out DIR]
+//! cargo run --release -p accuracy_cost [-- --quick] [--out DIR]
 //! ```
 //!
 //! On the vase (one cubic Bézier), the wine glass (a 25-point uniform
@@ -47,21 +47,21 @@
 
 mod batch;
 mod closed_form;
-#[path = "../../tests/common/mod.rs"]
-mod common;
 mod course;
 mod curves;
 mod memory;
 mod mesh_baseline;
 mod model;
 mod patch_reference;
-mod patch_shapes;
 mod patch_study;
 mod plot;
 mod reference;
 mod report;
 mod study;
 mod table;
+
+use revolve_testkit as common;
+use revolve_testkit::patch_shapes;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;

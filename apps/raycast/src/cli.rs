@@ -5,7 +5,8 @@
 //! ```
 //!
 //! Without `SCENE` it renders the bundled showcase (`scenes/showcase.txt`
-//! of the crate) to `out/showcase.png` of the crate. Given a scene and no
+//! of the repository) to `out/showcase.png` of the repository
+//! ([`crate::repo_root`]). Given a scene and no
 //! `-o`, it writes `out/<scene name>.png` under the current folder. The
 //! output's folder is created. Any error (bad arguments, a scene that does
 //! not parse, an output that cannot be written) prints one line to stderr
@@ -18,7 +19,7 @@
 //! mistake in the scene (as a compiler's warnings).
 
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::effects::Effects;
 use crate::image_out;
@@ -95,7 +96,7 @@ pub fn parse_args<I: IntoIterator<Item = String>>(args: I) -> Result<Args, Strin
             }
         }
     }
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::repo_root();
     let (scene, default_out) = match scene {
         Some(s) => {
             let stem = s
@@ -169,17 +170,23 @@ pub fn run_warning_to<I: IntoIterator<Item = String>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path;
 
     fn args(list: &[&str]) -> Result<Args, String> {
         parse_args(list.iter().map(|s| s.to_string()))
     }
 
     #[test]
-    fn no_arguments_render_the_showcase_into_the_crate() {
+    fn no_arguments_render_the_showcase_into_the_repository() {
         let a = args(&[]).unwrap();
         assert!(a.scene.ends_with("scenes/showcase.txt"));
         assert!(a.out.ends_with("out/showcase.png"));
         assert!(a.scene.is_absolute());
+        assert!(a.scene.is_file(), "{} is missing", a.scene.display());
+        assert_eq!(
+            a.out.parent().and_then(Path::parent),
+            Some(crate::repo_root())
+        );
         assert_eq!(a.samples, None);
         assert!(!a.quiet);
     }

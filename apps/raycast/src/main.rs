@@ -1,4 +1,4 @@
-//! The example ray caster: `cargo run --release --example raycast -- SCENE -o OUT.png`.
+//! The ray caster: `cargo run --release -p raycast -- SCENE -o OUT.png`.
 //!
 //! Reads a scene in the course framework's format (SCENE_FORMAT.md), decides
 //! which effects it calls for ([`effects`]), renders it in parallel with the
@@ -44,7 +44,18 @@ mod limits_tests;
 #[cfg(test)]
 mod fuzz_tests;
 
+use std::path::Path;
 use std::process::ExitCode;
+
+/// The repository's root, two levels above this package (`apps/raycast`):
+/// where the bundled `scenes/`, the docs and the default output folder
+/// `out/` are.
+fn repo_root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .and_then(Path::parent)
+        .expect("apps/raycast lies two levels below the repository's root")
+}
 
 fn main() -> ExitCode {
     match cli::run(std::env::args().skip(1)) {

@@ -2,7 +2,7 @@
 //! are exactly those of tracing every camera ray alone, and
 //! `World::intersect_batch` gives exactly `World::intersect` per lane.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use revolve::Ray;
 use revolve::nalgebra::{Point3, Vector3};
@@ -14,7 +14,7 @@ use crate::sampling::Rng;
 use crate::scene::{Integrator, Object, Scene, Shape};
 
 fn scene(name: &str, width: u32, height: u32) -> Scene {
-    let path: PathBuf = Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path: PathBuf = crate::repo_root()
         .join("scenes")
         .join(format!("{name}.txt"));
     let mut s = parse_file(&path).unwrap_or_else(|e| panic!("{e}"));

@@ -2,7 +2,6 @@
 //! a model (revolve's hierarchy over its patches), against every patch
 //! tried in turn.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use revolve::nalgebra::{Point3, Vector3};
@@ -127,7 +126,7 @@ fn a_nurbs_surface_is_hit_on_its_exact_cylinder() {
 
 /// The bundled teapot's patches.
 fn teapot() -> Vec<BezierSurface> {
-    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let scenes = crate::repo_root().join("scenes");
     let text = "PerspectiveCamera { center 0 0 10 direction 0 0 -1 up 0 1 0 angle 45 width 4 height 4 }\n\
                 Group { BezierPatches { file data/teapot.txt } }";
     let scene = crate::parse::parse_str(text, &scenes.join("test.txt")).unwrap();

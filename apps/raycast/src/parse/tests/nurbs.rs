@@ -346,7 +346,10 @@ fn only_a_nurbs_control_point_has_a_weight() {
 #[test]
 fn the_documented_example_is_a_half_circle() {
     // The first `NurbsCurve { … }` in a code block of the format's page.
-    let page = include_str!("../../../../docs/scene-format.md");
+    let page = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/scene-format.md"
+    ));
     let start = page
         .find("```text\nNurbsCurve {")
         .expect("the page has a NurbsCurve example")

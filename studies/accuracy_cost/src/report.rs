@@ -244,7 +244,7 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
     let mut md = String::from("# What accuracy costs in time\n\n");
     let _ = writeln!(
         md,
-        "Written by `cargo run --release --example accuracy_cost`. Random rays through \
+        "Written by `cargo run --release -p accuracy_cost`. Random rays through \
          each shape's bounding box, {} per shape; errors are `|t − t_exact| / object size` \
          against hits computed in exact arithmetic (the spline profiles' own hits in \
          rational arithmetic; for the NURBS sphere and torus, the exact sphere and torus: \
