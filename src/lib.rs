@@ -46,7 +46,11 @@
 //!   transversal hit missed, none false. Profiles without spans use a cubic
 //!   approximation refined on the profile; [`NewtonIntersector`] runs
 //!   Newton's method on `(t, u, v)` for any [`PatchBounds`] surface.
-//!   Accuracy is a [`Tolerance`].
+//!   Accuracy is a [`Tolerance`];
+//! - [`Bvh`]: a bounding-volume hierarchy over boxed items (binned surface
+//!   area heuristic, nearest-first traversal, [`Walk`] for rays side by
+//!   side), the one the patch search uses and the ray caster builds its
+//!   world, meshes and tubes on.
 //!
 //! Where the code is: [`curve`] (one file per curve type), [`bernstein`] and
 //! [`roots`] (the kernels), [`ray`] (what every intersector shares: rays,
@@ -126,6 +130,7 @@ pub use curve::{
 pub use error::Error;
 pub use limits::MAX_COORDINATE;
 pub use mesh::Mesh;
+pub use ray::bvh::{BoxRay, Bvh, Walk};
 pub use ray::newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 pub use ray::{Hit, Intersect, Ray, Tolerance};
 pub use revolution::{ExactReport, Revolution};

@@ -6,7 +6,7 @@
 //! units.
 
 pub(crate) mod acceptance;
-pub(crate) mod bvh;
+pub mod bvh;
 pub mod newton;
 pub(crate) mod slab;
 

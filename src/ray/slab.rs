@@ -1,10 +1,8 @@
-//! The slab test of a ray against an axis-aligned box: [`Aabb::clip`] for
-//! one box, and [`Slab`], the ray's reciprocal direction computed once for
-//! the many boxes of a hierarchy.
+//! The slab test of a ray against one axis-aligned box, [`Aabb::clip`]
+//! (a hierarchy's many boxes use [`BoxRay`](super::bvh::BoxRay)).
 
 use super::Ray;
 use crate::Aabb;
-use nalgebra::Point3;
 
 impl Aabb {
     /// The parameter interval `[t_enter, t_exit]` in which the ray is inside
@@ -47,44 +45,5 @@ impl Aabb {
             }
         }
         Some((lo, hi))
-    }
-}
-
-/// The ray's slab data, computed once per ray.
-pub(crate) struct Slab {
-    origin: Point3<f64>,
-    inverse: [f64; 3],
-}
-
-impl Slab {
-    /// The slab data of `ray` (a finite origin and direction).
-    pub(crate) fn new(ray: &Ray) -> Self {
-        Slab {
-            origin: ray.origin,
-            inverse: [1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z],
-        }
-    }
-
-    /// Where the ray enters `b` within `[lo, hi]`, if it meets it there.
-    /// A zero direction component (infinite inverse) keeps the range when
-    /// the origin is within the slab and empties it otherwise.
-    #[inline]
-    pub(crate) fn enter(&self, b: &Aabb, lo: f64, hi: f64) -> Option<f64> {
-        let (mut lo, mut hi) = (lo, hi);
-        for i in 0..3 {
-            let inv = self.inverse[i];
-            let (a, c) = (b.min[i] - self.origin[i], b.max[i] - self.origin[i]);
-            if inv.is_infinite() {
-                if a > 0.0 || c < 0.0 {
-                    return None;
-                }
-                continue;
-            }
-            let (t0, t1) = (a * inv, c * inv);
-            let (t0, t1) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-            lo = lo.max(t0);
-            hi = hi.min(t1);
-        }
-        (lo <= hi).then_some(lo)
     }
 }

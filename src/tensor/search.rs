@@ -46,10 +46,10 @@ use super::krawczyk::{TRY_UNIQUE, unique_root};
 use super::newton_polish::{Frame, SLACK, polish};
 use super::patch::{Patch, PatchHit};
 use crate::ray::acceptance::Acceptance;
-use crate::ray::bvh::Bvh;
-use crate::ray::slab::Slab;
+use crate::ray::bvh::{BoxRay, Bvh};
 use crate::{Ray, Tolerance};
 use nalgebra::Vector3;
+use std::ops::ControlFlow;
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
 /// handed to Newton's method.
@@ -142,15 +142,14 @@ pub(crate) fn intersect(
         &mut on_heap
     };
     let mut best: Option<PatchHit> = None;
-    let slab = Slab::new(ray);
-    set.tree.visit(&slab, t_floor, t_max, |k, _| {
-        let t_best = best.map_or(t_max, |h| h.t);
-        if let Some(hit) = search_patch(set, k, &frame, buf, t_best) {
-            best = Some(hit);
-            return hit.t;
-        }
-        t_best
-    });
+    set.tree
+        .traverse(&BoxRay::new(ray), t_floor, t_max, |k, t_best| {
+            if let Some(hit) = search_patch(set, k, &frame, buf, t_best) {
+                best = Some(hit);
+                return ControlFlow::Continue(hit.t);
+            }
+            ControlFlow::Continue(t_best)
+        });
     best
 }
 

@@ -78,11 +78,13 @@ impl SearchPieces {
             .collect();
         let pad = rounding_pad(scale);
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
+        // One piece a leaf; the pieces stored in the hierarchy's order.
+        let (tree, order) = Bvh::build(&boxes, 1);
         SearchPieces {
             degrees,
-            pieces,
-            owners,
-            tree: Bvh::new(&boxes),
+            pieces: order.iter().map(|&k| pieces[k].clone()).collect(),
+            owners: order.iter().map(|&k| owners[k]).collect(),
+            tree,
             scale,
         }
     }

@@ -6,7 +6,7 @@
 //!   [`mesh`], [`tube`], [`revolution`], [`surface`]: the composite shapes.
 //! - [`transform`]: rays into an object's frame by `M⁻¹` (direction not
 //!   normalized, so `t` is the world `t`), normals out by `L⁻ᵀ`.
-//! - [`object`]: a shape and its placement; [`bvh`]: the hierarchy used for
+//! - [`object`]: a shape and its placement; [`bvh`] (the library's): the hierarchy used for
 //!   the world and inside meshes and tubes; [`emitter`]: area-light sampling;
 //!   [`batch`]: the nearest hits of several rays at once.
 //!
@@ -18,8 +18,6 @@
 
 #[path = "geometry/batch.rs"]
 mod batch;
-#[path = "geometry/bvh.rs"]
-mod bvh;
 #[path = "geometry/emitter.rs"]
 mod emitter;
 #[path = "geometry/mesh.rs"]
@@ -49,8 +47,9 @@ use revolve::Ray;
 use revolve::nalgebra::{Point3, Unit, Vector3};
 
 use crate::scene::Scene;
-use bvh::{BoxRay, Bvh};
 use object::{Placed, Shared};
+use revolve::ray::bvh;
+use revolve::{BoxRay, Bvh};
 use shapes::LocalHit;
 
 pub use batch::LANES;
