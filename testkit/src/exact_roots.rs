@@ -20,6 +20,7 @@
 //! ([`common_integers`]), so the polynomials of the closed forms have
 //! integer coefficients and the same roots.
 
+use crate::reference::exact::gcd;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -83,15 +84,6 @@ fn derivative(a: &[BigInt]) -> Poly {
         .skip(1)
         .map(|(i, c)| c * BigInt::from(i))
         .collect()
-}
-
-/// `gcd(|a|, |b|)` (through the reduction of the fraction `a/b`).
-fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
-    if a.is_zero() || b.is_zero() {
-        return a.abs() + b.abs();
-    }
-    let reduced = BigRational::new(a.clone(), b.clone());
-    (a / reduced.numer()).abs()
 }
 
 /// `a` divided by the positive gcd of its coefficients.

@@ -347,7 +347,9 @@ fn elevation_limits_are_errors() {
     assert_eq!(high.elevate_degree(4).unwrap().degree(), 64);
     for times in [65, usize::MAX] {
         assert!(matches!(
-            Bezier::new(vec![Point3::origin()]).unwrap().elevate_degree(times),
+            Bezier::new(vec![Point3::origin()])
+                .unwrap()
+                .elevate_degree(times),
             Err(Error::ElevationTooHigh { .. })
         ));
     }

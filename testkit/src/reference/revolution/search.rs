@@ -16,9 +16,9 @@
 //!   window and either rounds to one `f64` or is narrower than
 //!   `2^-70·(1 + |t|)`.
 
-use super::exact::Frac;
 use super::ray::RayData;
 use super::spans::Span;
+use crate::reference::exact::Frac;
 use num_bigint::{BigInt, Sign};
 use num_traits::{One, Zero};
 
@@ -307,7 +307,6 @@ pub fn nearest(spans: &[Span], ray: &RayData) -> Found {
     }
 }
 
-#[cfg(test)]
 /// Every certified root in the window, for tests: `Err` if one is unsure.
 pub fn all_roots(spans: &[Span], ray: &RayData) -> Result<Vec<(f64, f64)>, ()> {
     let mut roots = Vec::new();
