@@ -22,7 +22,7 @@
 //!   check): [`newton_rays`] (the Newton tests' vase, generator and rays),
 //!   [`random_nurbs`] (valid random NURBS) and [`random_tensors`] (control
 //!   nets, weights and clamped knots).
-//! - [`reference`]: certified nearest-hit references shared with the
+//! - [`reference`](mod@reference): certified nearest-hit references shared with the
 //!   accuracy study — surfaces of revolution in exact rational arithmetic
 //!   ([`reference::revolution`]), Bézier patches by interval subdivision
 //!   and Miranda's theorem ([`reference::patch`]) — and the one interval

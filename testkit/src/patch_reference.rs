@@ -7,7 +7,7 @@
 //! vanish. Unlike the library (Bernstein coefficients and de Casteljau
 //! subdivision), the reference
 //! - converts each `fₖ` to the **power (monomial) basis** with interval
-//!   coefficients ([`Interval`](crate::interval::Interval): every operation rounded outward by one ulp,
+//!   coefficients ([`Interval`]: every operation rounded outward by one ulp,
 //!   so the true value of every real-number operation is enclosed);
 //! - encloses `fₖ` on a parameter box `[u₀, u₀ + h] × [v₀, v₀ + k]` by the
 //!   Taylor shift to the box's corner, `fₖ(u₀ + s, v₀ + r) = Σ gₐᵦ sᵃ rᵝ`,

@@ -10,7 +10,7 @@
 //!   unreduced fractions, correct rounding back to `f64`).
 //! - [`Certifier`]: what a consumer asks of any of them, also implemented by
 //!   the closed forms of the rational sphere and torus
-//!   ([`ClosedForm`](crate::closed_forms::ClosedForm)).
+//!   ([`ClosedForm`]).
 //!
 //! Independence: none of the library's intersection, root finding, knot
 //! insertion, Bézier-span, de Casteljau or rounding-bound code is used; the
