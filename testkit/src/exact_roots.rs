@@ -16,10 +16,14 @@
 //! A root in a window is bracketed by bisection between neighbouring `f64`s
 //! and rounded to the nearer one by the sign count at their exact midpoint:
 //! the result is the root correctly rounded (a tie may go either way).
-//! Inputs given as `f64`s become integers over a common power of two
+//! Inputs given as `f64`s become integers scaled by a common power of two
 //! ([`common_integers`]), so the polynomials of the closed forms have
-//! integer coefficients and the same roots.
+//! integer coefficients and the same roots. The `f64` → dyadic rational
+//! conversion and the integer gcd are those of
+//! [`reference::exact`](crate::reference::exact), shared with the
+//! revolution reference.
 
+use crate::reference::exact::{common_exponent, dyadic, gcd};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -27,15 +31,14 @@ use num_traits::{One, Signed, Zero};
 /// A polynomial with integer coefficients, in ascending powers.
 pub type Poly = Vec<BigInt>;
 
-/// The `f64`s as integers `nᵢ` over one power of two (`vᵢ = nᵢ/2ᵏ`
-/// exactly, the same `k` for all); `None` if one is NaN or infinite.
+/// The `f64`s as integers `nᵢ` scaled by one power of two (`vᵢ = nᵢ·2ᵉ`
+/// exactly, the same `e` for all: [`common_exponent`]); `None` if one is
+/// NaN or infinite.
 pub fn common_integers(values: &[f64]) -> Option<Vec<BigInt>> {
     if !values.iter().all(|v| v.is_finite()) {
         return None;
     }
-    let dyadics: Vec<Dyadic> = values.iter().map(|&v| Dyadic::of(v)).collect();
-    let k = dyadics.iter().map(|d| d.k).max().unwrap_or(0);
-    Some(dyadics.into_iter().map(|d| d.n << (k - d.k)).collect())
+    Some(common_exponent(values).0)
 }
 
 /// `a·b`.
@@ -83,15 +86,6 @@ fn derivative(a: &[BigInt]) -> Poly {
         .skip(1)
         .map(|(i, c)| c * BigInt::from(i))
         .collect()
-}
-
-/// `gcd(|a|, |b|)` (through the reduction of the fraction `a/b`).
-fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
-    if a.is_zero() || b.is_zero() {
-        return a.abs() + b.abs();
-    }
-    let reduced = BigRational::new(a.clone(), b.clone());
-    (a / reduced.numer()).abs()
 }
 
 /// `a` divided by the positive gcd of its coefficients.
@@ -162,27 +156,15 @@ struct Dyadic {
 }
 
 impl Dyadic {
-    /// The exact value of a finite `f64`.
+    /// The exact value of a finite `f64` ([`dyadic`]: `m·2ᵉ`).
     fn of(v: f64) -> Self {
-        let bits = v.to_bits();
-        let biased = ((bits >> 52) & 0x7ff) as i64;
-        let fraction = bits & ((1 << 52) - 1);
-        let (m, e) = if biased == 0 {
-            (fraction, -1074)
-        } else {
-            (fraction | (1 << 52), biased - 1075)
-        };
-        let m = if bits >> 63 == 1 {
-            -BigInt::from(m)
-        } else {
-            BigInt::from(m)
-        };
+        let (m, e) = dyadic(v);
         if e >= 0 {
             Dyadic { n: m << e, k: 0 }
         } else {
             Dyadic {
                 n: m,
-                k: (-e) as u64,
+                k: u64::from(e.unsigned_abs()),
             }
         }
     }

@@ -22,6 +22,11 @@
 //!   check): [`newton_rays`] (the Newton tests' vase, generator and rays),
 //!   [`random_nurbs`] (valid random NURBS) and [`random_tensors`] (control
 //!   nets, weights and clamped knots).
+//! - [`reference`](mod@reference): certified nearest-hit references shared with the
+//!   accuracy study — surfaces of revolution in exact rational arithmetic
+//!   ([`reference::revolution`]), Bézier patches by interval subdivision
+//!   and Miranda's theorem ([`reference::patch`]) — and the one interval
+//!   type of the references ([`interval`]).
 //! - [`camera`]: a pinhole camera's primary rays (the ray caster's formulas),
 //!   for the benches.
 
@@ -29,11 +34,13 @@ pub mod camera;
 pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
+pub mod interval;
 pub mod newton_rays;
 pub mod patch_reference;
 pub mod patch_shapes;
 pub mod random_nurbs;
 pub mod random_tensors;
+pub mod reference;
 pub mod teapot;
 pub mod tensor_shapes;
 

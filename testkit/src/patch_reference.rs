@@ -26,6 +26,8 @@
 //! patch are seen and flagged ([`RefHit::edge`]).
 
 use super::Rng;
+/// The interval type of the enclosures (one for all of testkit's references).
+pub use crate::interval::Interval;
 use revolve::nalgebra::{Point3, Vector3};
 use revolve::{BSplineSurface, BezierSurface, Hit, Intersect, NurbsSurface, Ray, Surface};
 
@@ -43,94 +45,6 @@ pub const ETA: f64 = 1e-6;
 
 /// Largest degree the reference handles (stack arrays).
 const MAX_DEGREE: usize = 23;
-
-/// The next `f64` toward `+∞` and `−∞` (bit stepping: `f64::next_up` needs
-/// Rust 1.86, above the crate's MSRV); infinities and NaN stay.
-trait Step {
-    fn step_up(self) -> f64;
-    fn step_down(self) -> f64;
-}
-
-impl Step for f64 {
-    fn step_up(self) -> f64 {
-        if self.is_nan() || self == f64::INFINITY {
-            self
-        } else if self == 0.0 {
-            f64::from_bits(1)
-        } else if self > 0.0 {
-            f64::from_bits(self.to_bits() + 1)
-        } else {
-            f64::from_bits(self.to_bits() - 1)
-        }
-    }
-
-    fn step_down(self) -> f64 {
-        -(-self).step_up()
-    }
-}
-
-/// A closed interval `[lo, hi]` with outward rounding.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Interval {
-    pub lo: f64,
-    pub hi: f64,
-}
-
-// `add`, `sub`, `mul` round outward: named methods, not the operator traits.
-#[allow(clippy::should_implement_trait)]
-impl Interval {
-    pub const ZERO: Interval = Interval { lo: 0.0, hi: 0.0 };
-
-    /// The point interval `[x, x]`.
-    pub fn point(x: f64) -> Self {
-        Interval { lo: x, hi: x }
-    }
-
-    /// `[lo, hi]` (the ends ordered).
-    pub fn new(a: f64, b: f64) -> Self {
-        Interval {
-            lo: a.min(b),
-            hi: a.max(b),
-        }
-    }
-
-    /// The sum, one ulp wider on each side than the rounded ends.
-    pub fn add(self, o: Interval) -> Self {
-        Interval {
-            lo: (self.lo + o.lo).step_down(),
-            hi: (self.hi + o.hi).step_up(),
-        }
-    }
-
-    /// The difference.
-    pub fn sub(self, o: Interval) -> Self {
-        Interval {
-            lo: (self.lo - o.hi).step_down(),
-            hi: (self.hi - o.lo).step_up(),
-        }
-    }
-
-    /// The product (the four end products, outward).
-    pub fn mul(self, o: Interval) -> Self {
-        let p = [
-            self.lo * o.lo,
-            self.lo * o.hi,
-            self.hi * o.lo,
-            self.hi * o.hi,
-        ];
-        let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        Interval {
-            lo: lo.step_down(),
-            hi: hi.step_up(),
-        }
-    }
-
-    /// Whether `0 ∈ [lo, hi]`.
-    pub fn contains_zero(self) -> bool {
-        self.lo <= 0.0 && self.hi >= 0.0
-    }
-}
 
 /// One rational Bézier patch of a surface, on the parameter rectangle
 /// `u × v` of the surface (local parameters `[0, 1]²`).

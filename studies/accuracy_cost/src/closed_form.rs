@@ -2,28 +2,23 @@
 //! torus against the exact sphere and torus, their ray equations (the
 //! quadratic and the quartic) with exact coefficients from the `f64`
 //! inputs, solved by Sturm sequences in integer arithmetic and rounded
-//! correctly (`tests/common/closed_forms.rs`, shared with
-//! `tests/rational_revolution.rs`).
+//! correctly (`revolve_testkit::closed_forms`, shared with
+//! `tests/revolution/rational_revolution.rs`; its
+//! [`Certifier`](crate::reference::Certifier) is there
+//! too).
 //!
 //! The NURBS profiles (quarter arcs with the weight `√2/2` rounded to
 //! `f64`) are the exact circles to about `1e-16` of their size, so errors
 //! against these references have that floor. Every ray with a finite
 //! origin and a non-zero direction is certified (tangent contacts too).
 
-use crate::reference::Certifier;
-use revolve::Ray;
-
 pub use crate::common::closed_forms::ClosedForm;
-
-impl Certifier for ClosedForm {
-    fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>> {
-        Some(self.roots(ray)?.first_in(t_min, t_max))
-    }
-}
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::reference::Certifier;
+    use revolve::Ray;
     use revolve::nalgebra::{Point3, Vector3};
 
     fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {

@@ -35,7 +35,7 @@
 //! curved bicubic, a folded bicubic and Newell's teapot, with revolve's
 //! certified patch intersector, the Newton intersector, the course method
 //! and its tessellations in parry, against a reference certified in
-//! interval arithmetic ([`patch_reference`]).
+//! interval arithmetic ([`reference::PatchReference`]).
 //!
 //! Writes `report.md` (the tables), `intersection.svg` (median error
 //! against rays/s, log–log, one series per method, a panel per shape),
@@ -52,7 +52,6 @@ mod curves;
 mod memory;
 mod mesh_baseline;
 mod model;
-mod patch_reference;
 mod patch_study;
 mod plot;
 mod reference;

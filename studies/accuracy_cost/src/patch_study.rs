@@ -23,8 +23,8 @@ use crate::batch::{Single, record_single_and_batched};
 use crate::course::CourseNewton;
 use crate::mesh_baseline::MeshBaseline;
 use crate::model::{Method, Row};
-use crate::patch_reference::PatchReference;
 use crate::patch_shapes;
+use crate::reference::PatchReference;
 use crate::study::{Cases, Newton, Plan, built, measured_row};
 use revolve::nalgebra::Vector3;
 use revolve::{Aabb, BezierPatches, BezierSurface, Intersect, NewtonIntersector, Ray, Tolerance};
@@ -235,8 +235,9 @@ pub fn run_patch_shape(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::common::interval::Interval;
+    use crate::common::reference::patch::Answer;
     use crate::common::{kappa, t_tolerance};
-    use crate::patch_reference::{Answer, Iv};
     use crate::study::{random_rays, reference_cases};
     use revolve::Surface;
     use revolve::nalgebra::{Point3, Vector3};
@@ -300,7 +301,7 @@ mod tests {
     /// Whether revolve's hit `h` is the reference's: its `t` within the
     /// reference interval widened by the hit's allowed error (the backward
     /// error `1e-12` of the scale amplified by its condition).
-    fn agrees(h: &revolve::Hit, ray: &Ray, want: Iv, scale: f64) -> bool {
+    fn agrees(h: &revolve::Hit, ray: &Ray, want: Interval, scale: f64) -> bool {
         let slack = t_tolerance(scale, kappa(&ray.dir, &h.normal), &ray.dir);
         want.lo - slack <= h.t && h.t <= want.hi + slack
     }

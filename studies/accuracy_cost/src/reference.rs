@@ -1,132 +1,27 @@
-//! The study's reference: the exact nearest hit of a ray with a surface of
-//! revolution, found in exact rational arithmetic and rounded once.
+//! The study's references, from `revolve-testkit` (shared with the
+//! integration tests): the exact rational reference for surfaces of
+//! revolution ([`ExactProfile`]), the certified interval reference for
+//! Bézier patches ([`PatchReference`]) and the [`Certifier`] trait the
+//! measurements ask them through (the closed forms of the rational sphere
+//! and torus implement it too: [`crate::closed_form`]).
 //!
-//! The surface is `{(X, Y, Z) : X² + Z² = x(u)², Y = y(u)}` for a profile
-//! `(x(u), y(u))` given as a Bézier curve or a B-spline. Every input `f64`
-//! (control points, knots, ray origin and direction, `t_min`, `t_max`) is
-//! read as the exact dyadic rational it is, and the answer is the hit of the
-//! exact curve those numbers define:
-//!
-//! 1. Each non-empty knot interval becomes an exact Bézier span (blossoming
-//!    with rationals) — [`spans`].
-//! 2. For `d_y ≠ 0`, a height `y` is met at `t = (y − o_y)/d_y`, and the ray
-//!    meets the surface at parameter `u` iff
-//!    `(o_x d_y + (y − o_y) d_x)² + (o_z d_y + (y − o_y) d_z)² − d_y² x² = 0`,
-//!    a polynomial of degree `2p` per span whose Bernstein coefficients are
-//!    exact integers — [`ray`].
-//! 3. Its roots in `[0, 1]` are isolated by Descartes' rule in the Bernstein
-//!    basis with exact halving, then bisected until `t`, bounded by the hull
-//!    of `y`'s coefficients, is certified — [`search`]. The `t` returned is
-//!    the correctly rounded exact `t` when the bounds round alike (always,
-//!    bar `t` within `2^-70·(1 + |t|)` of a rounding boundary; then it is
-//!    within an ulp).
-//!
-//! Independence: none of revolve's intersection, root finding, knot
-//! insertion or Bézier-span code is used; the only shared input is the
-//! profile's numbers. The arithmetic is exact, so the answer carries no
-//! floating-point error of its own.
-//!
-//! Edge rules: a hit needs `t_min < t < t_max` strictly; a root exactly at a
-//! span boundary shared by two spans counts once; whatever can't be
-//! certified is [`Reference::Ambiguous`] — a tangent (multiple) root or a
-//! cluster narrower than `2^-100` in a span's parameter, a root whose `t`
-//! can't be separated from `t_min`/`t_max`, two candidate nearest roots
-//! whose `t` can't be ordered, a span lying wholly on the ray's cone of
-//! circles, and unsupported input: `d_y = 0` (rays perpendicular to the
-//! axis; the study sends none), `d = 0`, non-finite numbers, an invalid
-//! profile.
+//! The tests below check those references against closed forms and exact
+//! residuals (the study's numbers are only as good as they are).
 
-#[path = "reference/exact.rs"]
-mod exact;
-#[path = "reference/ray.rs"]
-mod ray;
-#[path = "reference/search.rs"]
-mod search;
-#[path = "reference/spans.rs"]
-mod spans;
-
-use revolve::Ray;
-use revolve::nalgebra::Point2;
-
-/// A profile converted to exact Bézier spans.
-pub struct ExactProfile {
-    /// `None` for an invalid profile: every query is ambiguous.
-    spans: Option<Vec<spans::Span>>,
-}
-
-/// The reference answer for one ray.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Reference {
-    /// The nearest hit: `t` rounded to `f64` (within an ulp of the exact
-    /// value), and its profile parameter `u` (within `2^-64` of the span's
-    /// width, then rounded).
-    Hit { t: f64, u: f64 },
-    /// No hit in `(t_min, t_max)`.
-    Miss,
-    /// The exact answer could not be certified (tangent/multiple root, a hit
-    /// at `t_min`/`t_max`, `d_y = 0`, `d = 0`, invalid input).
-    Ambiguous,
-}
-
-/// What the study needs of a reference: for each ray, the certified
-/// nearest hit or miss, or nothing certain (the ray is left out).
-pub trait Certifier: Sync {
-    /// The nearest hit's `t` with `t_min < t < t_max` (`Some(None)`: a
-    /// certain miss); `None` when the answer cannot be certified.
-    fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>>;
-}
-
-impl Certifier for ExactProfile {
-    fn certify(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Option<f64>> {
-        match self.nearest(ray, t_min, t_max) {
-            Reference::Hit { t, .. } => Some(Some(t)),
-            Reference::Miss => Some(None),
-            Reference::Ambiguous => None,
-        }
-    }
-}
-
-impl ExactProfile {
-    /// One Bézier curve (degree ≥ 1), `u ∈ [0, 1]`.
-    pub fn from_bezier(points: &[Point2<f64>]) -> Self {
-        ExactProfile {
-            spans: spans::bezier(points),
-        }
-    }
-
-    /// A B-spline of degree `degree ≥ 1` with `points.len() + degree + 1`
-    /// non-decreasing knots, `u` in its domain `[knots[p], knots[n]]`.
-    pub fn from_bspline(degree: usize, knots: &[f64], points: &[Point2<f64>]) -> Self {
-        ExactProfile {
-            spans: spans::bspline(degree, knots, points),
-        }
-    }
-
-    /// The nearest exact hit of `ray` with `t_min < t < t_max`.
-    pub fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Reference {
-        let Some(spans) = &self.spans else {
-            return Reference::Ambiguous;
-        };
-        let data = match ray::RayData::new(ray, t_min, t_max) {
-            Ok(d) => d,
-            Err(ray::Reject::Miss) => return Reference::Miss,
-            Err(ray::Reject::Ambiguous) => return Reference::Ambiguous,
-        };
-        match search::nearest(spans, &data) {
-            search::Found::Hit { t, u } => Reference::Hit { t, u },
-            search::Found::Miss => Reference::Miss,
-            search::Found::Unsure => Reference::Ambiguous,
-        }
-    }
-}
+pub use crate::common::reference::Certifier;
+pub use crate::common::reference::patch::PatchReference;
+pub use crate::common::reference::revolution::ExactProfile;
 
 #[cfg(test)]
 mod tests {
-    use super::exact::{Frac, round_ratio};
     use super::*;
+    use crate::common::reference::exact::{Frac, round_ratio};
+    use crate::common::reference::revolution::{Reference, ray, search};
     use num_bigint::BigInt;
     use num_rational::BigRational;
     use num_traits::{Signed, Zero};
+    use revolve::Ray;
+    use revolve::nalgebra::Point2;
     use revolve::nalgebra::{Point3, Vector3};
     use revolve::{BSpline, Bezier, Curve};
 
@@ -517,7 +412,7 @@ mod tests {
             prof.nearest(&r, 0.0, INF),
             Reference::Hit { t: 1.0, u: 0.5 }
         );
-        let spans = prof.spans.as_ref().expect("valid");
+        let spans = prof.spans().expect("valid");
         let data = ray::RayData::new(&r, 0.0, INF).ok().expect("supported ray");
         let roots = search::all_roots(spans, &data).expect("certain");
         assert_eq!(roots.len(), 2, "{roots:?}");
@@ -754,7 +649,7 @@ mod tests {
         .expect("valid");
         let ne = ExactProfile::from_bspline(2, nonuniform.knots(), nonuniform.points());
         for (curve, exact, count) in [(&g, &e, 22), (&nonuniform, &ne, 3)] {
-            let spans = exact.spans.as_ref().expect("valid");
+            let spans = exact.spans().expect("valid");
             assert_eq!(spans.len(), count);
             for w in spans.windows(2) {
                 assert!(w[0].joins(&w[1]), "consecutive spans share their end point");
@@ -775,11 +670,43 @@ mod tests {
         }
         // The Bézier profile's one span is the curve itself.
         let ev = ExactProfile::from_bezier(&points(&VASE));
-        let span = &ev.spans.as_ref().expect("valid")[0];
+        let span = &ev.spans().expect("valid")[0];
         assert_eq!(span.eval(&q(0.0)), (q(0.6), q(-1.0)));
         let three = Q::from_integer(BigInt::from(3));
         let mid = (q(0.6) + &three * q(1.6) + &three * q(-0.2) + q(0.5))
             / Q::from_integer(BigInt::from(8));
         assert_eq!(span.eval(&q(0.5)).0, mid);
+    }
+}
+
+#[cfg(test)]
+mod interval_tests {
+    use crate::common::interval::{Interval, down, up};
+
+    #[test]
+    fn operations_enclose_the_exact_results() {
+        // 0.1 + 0.2 is not 0.3 in binary; the exact sum of the two doubles
+        // lies strictly inside the rounded-outward interval.
+        let s = Interval::point(0.1).add(Interval::point(0.2));
+        assert!(s.lo < 0.1 + 0.2 && 0.1 + 0.2 < s.hi);
+        assert!(s.hi - s.lo <= 4.0 * f64::EPSILON);
+        let p = Interval { lo: -2.0, hi: 3.0 }.mul(Interval { lo: -5.0, hi: 1.0 });
+        assert!(p.lo <= -15.0 && p.hi >= 10.0 && p.lo > -15.0 - 1e-13);
+        let q = Interval { lo: 1.0, hi: 2.0 }.div_point(-4.0);
+        assert!(q.lo <= -0.5 && q.hi >= -0.25);
+        assert_eq!(up(0.0), f64::from_bits(1));
+        assert_eq!(down(0.0), -f64::from_bits(1));
+        assert_eq!(up(-1.0), -1.0 + f64::EPSILON / 2.0);
+        assert_eq!(down(1.0), 1.0 - f64::EPSILON / 2.0);
+        let l = Interval::lerp(Interval::point(1.0), Interval::point(3.0), 0.25);
+        assert!(l.lo <= 1.5 && 1.5 <= l.hi);
+        assert!(
+            Interval {
+                lo: 1e-300,
+                hi: 1.0
+            }
+            .positive()
+        );
+        assert!(!Interval { lo: 0.0, hi: 1.0 }.positive());
     }
 }

@@ -308,7 +308,7 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
         "## Bézier patches\n\n\
          A gently curved bicubic patch, a folded bicubic (rays cross it up to several \
          times) and Newell's teapot (32 bicubic patches, `scenes/data/teapot.txt`). The \
-         reference is `patch_reference.rs`: subdivision of the ray's two plane distances \
+         reference is `revolve_testkit::reference::patch`: subdivision of the ray's two plane distances \
          in interval arithmetic rounded outward, a root proven by Miranda's theorem on a \
          small box around Newton's point inside a box where the preconditioned Jacobian \
          proves the map injective (at most one root), its `t` narrowed by a mean-value \

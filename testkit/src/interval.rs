@@ -2,10 +2,17 @@
 //! operation's exact result on any members lies in the interval it returns
 //! (round to nearest errs by at most half an ulp; each end is then moved one
 //! ulp outward).
+//!
+//! The one interval type of testkit's references: the power-form patch
+//! enclosure ([`patch_reference`](crate::patch_reference)) and the certified
+//! nearest patch hit ([`reference::patch`](crate::reference::patch)). It is
+//! written here, not taken from the library, so that the references share no
+//! rounding-bound code with the solvers they check. `f64::next_up` needs
+//! Rust 1.86, above the crate's MSRV: [`up`] and [`down`] step the bits.
 
 /// The closed interval `[lo, hi]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Iv {
+pub struct Interval {
     pub lo: f64,
     pub hi: f64,
 }
@@ -27,43 +34,64 @@ pub fn down(x: f64) -> f64 {
     -up(-x)
 }
 
-impl Iv {
+// `add`, `sub`, `mul` round outward: named methods, not the operator traits.
+#[allow(clippy::should_implement_trait)]
+impl Interval {
+    /// `[0, 0]`.
+    pub const ZERO: Interval = Interval { lo: 0.0, hi: 0.0 };
+
     /// The single real `x` (an `f64` is exact).
-    pub fn point(x: f64) -> Iv {
-        Iv { lo: x, hi: x }
+    pub fn point(x: f64) -> Interval {
+        Interval { lo: x, hi: x }
     }
 
-    pub fn add(self, o: Iv) -> Iv {
-        Iv {
+    /// `[lo, hi]` (the ends ordered).
+    pub fn new(a: f64, b: f64) -> Interval {
+        Interval {
+            lo: a.min(b),
+            hi: a.max(b),
+        }
+    }
+
+    /// Whether `0 ∈ [lo, hi]`.
+    pub fn contains_zero(self) -> bool {
+        self.lo <= 0.0 && self.hi >= 0.0
+    }
+
+    /// The sum.
+    pub fn add(self, o: Interval) -> Interval {
+        Interval {
             lo: down(self.lo + o.lo),
             hi: up(self.hi + o.hi),
         }
     }
 
-    pub fn sub(self, o: Iv) -> Iv {
-        Iv {
+    /// The difference.
+    pub fn sub(self, o: Interval) -> Interval {
+        Interval {
             lo: down(self.lo - o.hi),
             hi: up(self.hi - o.lo),
         }
     }
 
-    pub fn mul(self, o: Iv) -> Iv {
+    /// The product (the four end products, outward).
+    pub fn mul(self, o: Interval) -> Interval {
         let p = [
             self.lo * o.lo,
             self.lo * o.hi,
             self.hi * o.lo,
             self.hi * o.hi,
         ];
-        Iv {
+        Interval {
             lo: down(p.iter().copied().fold(f64::INFINITY, f64::min)),
             hi: up(p.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
         }
     }
 
     /// `self / k` for a nonzero `f64` `k`.
-    pub fn div_point(self, k: f64) -> Iv {
+    pub fn div_point(self, k: f64) -> Interval {
         let (a, b) = (self.lo / k, self.hi / k);
-        Iv {
+        Interval {
             lo: down(a.min(b)),
             hi: up(a.max(b)),
         }
@@ -72,21 +100,21 @@ impl Iv {
     /// `(1 − τ)a + τb` for the exact `τ ∈ [0, 1]` (in this form, not
     /// `a + τ(b − a)`, so that the widths of `a` and `b` are averaged, not
     /// added up again at each de Casteljau level).
-    pub fn lerp(a: Iv, b: Iv, tau: f64) -> Iv {
+    pub fn lerp(a: Interval, b: Interval, tau: f64) -> Interval {
         let rest = 1.0 - tau;
         // 1 − τ is exact for τ ∈ [½, 1] (Sterbenz) and whenever it rounds
         // back; otherwise bracket it.
         let rest = if 1.0 - rest == tau {
-            Iv::point(rest)
+            Interval::point(rest)
         } else {
-            Iv::point(1.0).sub(Iv::point(tau))
+            Interval::point(1.0).sub(Interval::point(tau))
         };
-        rest.mul(a).add(Iv::point(tau).mul(b))
+        rest.mul(a).add(Interval::point(tau).mul(b))
     }
 
     /// The smallest interval containing both.
-    pub fn hull(self, o: Iv) -> Iv {
-        Iv {
+    pub fn hull(self, o: Interval) -> Interval {
+        Interval {
             lo: self.lo.min(o.lo),
             hi: self.hi.max(o.hi),
         }
@@ -97,6 +125,7 @@ impl Iv {
         self.lo.abs().max(self.hi.abs())
     }
 
+    /// The midpoint (rounded).
     pub fn mid(self) -> f64 {
         0.5 * self.lo + 0.5 * self.hi
     }
@@ -109,37 +138,5 @@ impl Iv {
     /// Every member is `< 0`.
     pub fn negative(self) -> bool {
         self.hi < 0.0
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn operations_enclose_the_exact_results() {
-        // 0.1 + 0.2 is not 0.3 in binary; the exact sum of the two doubles
-        // lies strictly inside the rounded-outward interval.
-        let s = Iv::point(0.1).add(Iv::point(0.2));
-        assert!(s.lo < 0.1 + 0.2 && 0.1 + 0.2 < s.hi);
-        assert!(s.hi - s.lo <= 4.0 * f64::EPSILON);
-        let p = Iv { lo: -2.0, hi: 3.0 }.mul(Iv { lo: -5.0, hi: 1.0 });
-        assert!(p.lo <= -15.0 && p.hi >= 10.0 && p.lo > -15.0 - 1e-13);
-        let q = Iv { lo: 1.0, hi: 2.0 }.div_point(-4.0);
-        assert!(q.lo <= -0.5 && q.hi >= -0.25);
-        assert_eq!(up(0.0), f64::from_bits(1));
-        assert_eq!(down(0.0), -f64::from_bits(1));
-        assert_eq!(up(-1.0), -1.0 + f64::EPSILON / 2.0);
-        assert_eq!(down(1.0), 1.0 - f64::EPSILON / 2.0);
-        let l = Iv::lerp(Iv::point(1.0), Iv::point(3.0), 0.25);
-        assert!(l.lo <= 1.5 && 1.5 <= l.hi);
-        assert!(
-            Iv {
-                lo: 1e-300,
-                hi: 1.0
-            }
-            .positive()
-        );
-        assert!(!Iv { lo: 0.0, hi: 1.0 }.positive());
     }
 }

@@ -1,4 +1,4 @@
-//! The study's reference for tensor-product Bézier patches: the nearest hit
+//! A certified reference for tensor-product Bézier patches: the nearest hit
 //! of a ray, certified by subdivision in interval arithmetic, Miranda's
 //! theorem and an injectivity test.
 //!
@@ -11,7 +11,7 @@
 //! `t = (X_k − o_k)/d_k`. On a Bézier patch `f`, `g` and `z = X_k − o_k` are
 //! tensor Bernstein polynomials whose coefficients come from the control
 //! points; they are computed as intervals with outward rounding
-//! ([`interval`]), so they enclose the exact coefficients of the `f64`
+//! ([`Interval`]), so they enclose the exact coefficients of the `f64`
 //! inputs. Then, on parameter boxes (halved by interval de Casteljau in the
 //! wider parameter):
 //! - a box is dropped when all coefficients of `f` or of `g` have one sign
@@ -46,12 +46,8 @@
 //! with its own interval arithmetic. The only shared input is the patches'
 //! control points ([`BezierSurface::points`]).
 
-#[path = "patch_reference/interval.rs"]
-mod interval;
-
-use crate::reference::Certifier;
-pub use interval::Iv;
-use interval::up;
+use super::Certifier;
+use crate::interval::{Interval, up};
 use revolve::nalgebra::Point3;
 use revolve::{BezierSurface, Ray};
 
@@ -71,7 +67,7 @@ const RADII: [f64; 5] = [
 ];
 
 /// `(f, g, z)` at one coefficient.
-type Co = [Iv; 3];
+type Co = [Interval; 3];
 
 /// Interval Bernstein coefficients of `(f, g, z)` on a parameter box,
 /// row-major (`rows` along `u`).
@@ -84,9 +80,9 @@ struct Net {
 
 fn lerp3(a: Co, b: Co, tau: f64) -> Co {
     [
-        Iv::lerp(a[0], b[0], tau),
-        Iv::lerp(a[1], b[1], tau),
-        Iv::lerp(a[2], b[2], tau),
+        Interval::lerp(a[0], b[0], tau),
+        Interval::lerp(a[1], b[1], tau),
+        Interval::lerp(a[2], b[2], tau),
     ]
 }
 
@@ -164,14 +160,14 @@ impl Net {
     /// The net on `[lo, hi] ⊂ [0, 1]` of this box's parameter (`0 ≤ lo <
     /// hi ≤ 1`): split at `hi`, then the left part at `lo/hi`. Returns it
     /// with bounds on where its box really starts (`(lo/hi rounded)·hi`).
-    fn restrict(&self, along_u: bool, lo: f64, hi: f64) -> (Net, Iv) {
+    fn restrict(&self, along_u: bool, lo: f64, hi: f64) -> (Net, Interval) {
         let (left, _) = self.split(along_u, hi);
         if lo <= 0.0 {
-            return (left, Iv::point(0.0));
+            return (left, Interval::point(0.0));
         }
         let r = lo / hi;
         let (_, right) = left.split(along_u, r);
-        let start = Iv::point(r).mul(Iv::point(hi));
+        let start = Interval::point(r).mul(Interval::point(hi));
         (right, start)
     }
 
@@ -186,11 +182,11 @@ impl Net {
     }
 
     /// The hull of the coefficients of component `k`.
-    fn hull(&self, k: usize) -> Iv {
+    fn hull(&self, k: usize) -> Interval {
         self.c
             .iter()
             .map(|c| c[k])
-            .reduce(Iv::hull)
+            .reduce(Interval::hull)
             .expect("a net has coefficients")
     }
 
@@ -201,38 +197,38 @@ impl Net {
 
     /// Hulls of the first partials of component `k` over the box, in its
     /// local parameters `[0, 1]²`: `(∂/∂s, ∂/∂r)`.
-    fn gradient(&self, k: usize) -> [Iv; 2] {
+    fn gradient(&self, k: usize) -> [Interval; 2] {
         let (m, n) = (self.rows - 1, self.cols - 1);
-        let mut du: Option<Iv> = None;
-        let mut dv: Option<Iv> = None;
+        let mut du: Option<Interval> = None;
+        let mut dv: Option<Interval> = None;
         for i in 0..self.rows {
             for j in 0..self.cols {
                 if i < m {
                     let d = self.at(i + 1, j)[k]
                         .sub(self.at(i, j)[k])
-                        .mul(Iv::point(m as f64));
+                        .mul(Interval::point(m as f64));
                     du = Some(du.map_or(d, |h| h.hull(d)));
                 }
                 if j < n {
                     let d = self.at(i, j + 1)[k]
                         .sub(self.at(i, j)[k])
-                        .mul(Iv::point(n as f64));
+                        .mul(Interval::point(n as f64));
                     dv = Some(dv.map_or(d, |h| h.hull(d)));
                 }
             }
         }
-        let zero = Iv::point(0.0);
+        let zero = Interval::point(0.0);
         [du.unwrap_or(zero), dv.unwrap_or(zero)]
     }
 
     /// The Jacobian hull of `(f, g)` in local parameters.
-    fn jacobian(&self) -> [[Iv; 2]; 2] {
+    fn jacobian(&self) -> [[Interval; 2]; 2] {
         [self.gradient(0), self.gradient(1)]
     }
 }
 
 /// The inverse of the 2 × 2 matrix of midpoints, if it is regular.
-fn inverse_mid(j: &[[Iv; 2]; 2]) -> Option<[[f64; 2]; 2]> {
+fn inverse_mid(j: &[[Interval; 2]; 2]) -> Option<[[f64; 2]; 2]> {
     inverse([
         [j[0][0].mid(), j[0][1].mid()],
         [j[1][0].mid(), j[1][1].mid()],
@@ -249,20 +245,20 @@ fn inverse(m: [[f64; 2]; 2]) -> Option<[[f64; 2]; 2]> {
 }
 
 /// `A·J` for a point matrix `A` and an interval matrix `J`.
-fn times(a: &[[f64; 2]; 2], j: &[[Iv; 2]; 2]) -> [[Iv; 2]; 2] {
+fn times(a: &[[f64; 2]; 2], j: &[[Interval; 2]; 2]) -> [[Interval; 2]; 2] {
     let entry = |r: usize, c: usize| {
-        Iv::point(a[r][0])
+        Interval::point(a[r][0])
             .mul(j[0][c])
-            .add(Iv::point(a[r][1]).mul(j[1][c]))
+            .add(Interval::point(a[r][1]).mul(j[1][c]))
     };
     [[entry(0, 0), entry(0, 1)], [entry(1, 0), entry(1, 1)]]
 }
 
 /// `I − A·J`.
-fn residual_matrix(a: &[[f64; 2]; 2], j: &[[Iv; 2]; 2]) -> [[Iv; 2]; 2] {
+fn residual_matrix(a: &[[f64; 2]; 2], j: &[[Interval; 2]; 2]) -> [[Interval; 2]; 2] {
     let m = times(a, j);
-    let one = Iv::point(1.0);
-    let zero = Iv::point(0.0);
+    let one = Interval::point(1.0);
+    let zero = Interval::point(0.0);
     [
         [one.sub(m[0][0]), zero.sub(m[0][1])],
         [zero.sub(m[1][0]), one.sub(m[1][1])],
@@ -270,18 +266,18 @@ fn residual_matrix(a: &[[f64; 2]; 2], j: &[[Iv; 2]; 2]) -> [[Iv; 2]; 2] {
 }
 
 /// Whether `‖I − A·J‖∞ < 1` certainly (then every matrix of `J` is regular).
-fn contracting(a: &[[f64; 2]; 2], j: &[[Iv; 2]; 2]) -> bool {
+fn contracting(a: &[[f64; 2]; 2], j: &[[Interval; 2]; 2]) -> bool {
     residual_matrix(a, j)
         .iter()
         .all(|row| up(row[0].magnitude() + row[1].magnitude()) < 1.0)
 }
 
 /// `A·(f, g)` at one coefficient.
-fn preconditioned(a: &[[f64; 2]; 2], c: &Co) -> [Iv; 2] {
+fn preconditioned(a: &[[f64; 2]; 2], c: &Co) -> [Interval; 2] {
     let row = |r: usize| {
-        Iv::point(a[r][0])
+        Interval::point(a[r][0])
             .mul(c[0])
-            .add(Iv::point(a[r][1]).mul(c[1]))
+            .add(Interval::point(a[r][1]).mul(c[1]))
     };
     [row(0), row(1)]
 }
@@ -291,10 +287,10 @@ fn miranda(net: &Net, a: &[[f64; 2]; 2]) -> bool {
     let (m, n) = (net.rows - 1, net.cols - 1);
     let signs =
         |k: usize, low: &mut dyn Iterator<Item = Co>, high: &mut dyn Iterator<Item = Co>| {
-            let lo: Vec<Iv> = low.map(|c| preconditioned(a, &c)[k]).collect();
-            let hi: Vec<Iv> = high.map(|c| preconditioned(a, &c)[k]).collect();
-            let below = |v: &[Iv]| v.iter().all(|x| x.hi <= 0.0);
-            let above = |v: &[Iv]| v.iter().all(|x| x.lo >= 0.0);
+            let lo: Vec<Interval> = low.map(|c| preconditioned(a, &c)[k]).collect();
+            let hi: Vec<Interval> = high.map(|c| preconditioned(a, &c)[k]).collect();
+            let below = |v: &[Interval]| v.iter().all(|x| x.hi <= 0.0);
+            let above = |v: &[Interval]| v.iter().all(|x| x.lo >= 0.0);
             (below(&lo) && above(&hi)) || (above(&lo) && below(&hi))
         };
     signs(
@@ -347,7 +343,7 @@ pub struct PatchReference {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Answer {
     /// The nearest hit's `t` lies in this interval.
-    Hit(Iv),
+    Hit(Interval),
     Miss,
     /// Not certain (a tangent contact, a root on a patch edge, the budget).
     Ambiguous,
@@ -391,11 +387,11 @@ impl PatchReference {
     fn prepare(&self, patch: &ControlNet, ray: &Ray, axes: [usize; 3]) -> Prepared {
         let [k, a, b] = axes;
         let (o, d) = (ray.origin, ray.dir);
-        let rel = |p: &Point3<f64>, i: usize| Iv::point(p[i]).sub(Iv::point(o[i]));
+        let rel = |p: &Point3<f64>, i: usize| Interval::point(p[i]).sub(Interval::point(o[i]));
         let plane = |p: &Point3<f64>, i: usize| {
-            Iv::point(d[k])
+            Interval::point(d[k])
                 .mul(rel(p, i))
-                .sub(Iv::point(d[i]).mul(rel(p, k)))
+                .sub(Interval::point(d[i]).mul(rel(p, k)))
         };
         let c: Vec<Co> = patch
             .points
@@ -442,8 +438,8 @@ impl PatchReference {
         // Nearest first: the stack pops from the end.
         let t_of = |item: &Item| item.net.hull(2).div_point(prepared[item.patch].dk);
         stack.sort_by(|x, y| t_of(y).lo.total_cmp(&t_of(x).lo));
-        let mut best: Option<Iv> = None;
-        let mut uncertain: Vec<Iv> = Vec::new();
+        let mut best: Option<Interval> = None;
+        let mut uncertain: Vec<Interval> = Vec::new();
         let mut visited = 0;
         while let Some(item) = stack.pop() {
             visited += 1;
@@ -469,7 +465,7 @@ impl PatchReference {
                     uncertain.push(root);
                     continue;
                 }
-                best = Some(best.map_or(root, |b| Iv {
+                best = Some(best.map_or(root, |b| Interval {
                     lo: b.lo.min(root.lo),
                     hi: b.hi.min(root.hi),
                 }));
@@ -506,7 +502,8 @@ impl PatchReference {
             children.sort_by(|x, y| t_of(y).lo.total_cmp(&t_of(x).lo));
             stack.extend(children);
         }
-        let matters = |u: &Iv| u.hi > t_min && u.lo < t_max && best.is_none_or(|b| u.lo < b.hi);
+        let matters =
+            |u: &Interval| u.hi > t_min && u.lo < t_max && best.is_none_or(|b| u.lo < b.hi);
         if uncertain.iter().any(matters) {
             return Answer::Ambiguous;
         }
@@ -517,7 +514,7 @@ impl PatchReference {
 /// On a box with at most one root: Newton's point, a small box around it
 /// inside `item` where Miranda's test proves a root, and that root's `t`
 /// (narrowed by a mean-value contraction).
-fn certify_root(p: &Prepared, item: &Item) -> Option<Iv> {
+fn certify_root(p: &Prepared, item: &Item) -> Option<Interval> {
     let cols = p.net.cols;
     let (mut u, mut v) = (0.5 * (item.u.0 + item.u.1), 0.5 * (item.v.0 + item.v.1));
     let mut jac = [[0.0; 2]; 2];
@@ -556,23 +553,23 @@ fn certify_root(p: &Prepared, item: &Item) -> Option<Iv> {
 
 /// The `t` of the root a net's box is known to hold: `z/d_k` over the box,
 /// narrowed by `x ∈ q − A·F(q) + (I − A·J)(T − q)` about the centre `q`.
-fn root_t(net: &Net, dk: f64) -> Iv {
+fn root_t(net: &Net, dk: f64) -> Interval {
     let whole = net.hull(2).div_point(dk);
     let jac = net.jacobian();
     let Some(a) = inverse_mid(&jac) else {
         return whole;
     };
     let centre = net.centre();
-    let half = Iv { lo: -0.5, hi: 0.5 };
+    let half = Interval { lo: -0.5, hi: 0.5 };
     let step = preconditioned(&a, &centre);
     let e = residual_matrix(&a, &jac);
     let offset = |r: usize| {
-        Iv::point(0.0)
+        Interval::point(0.0)
             .sub(step[r])
             .add(e[r][0].mul(half))
             .add(e[r][1].mul(half))
     };
-    let clip = |x: Iv| Iv {
+    let clip = |x: Interval| Interval {
         lo: x.lo.max(-0.5),
         hi: x.hi.min(0.5),
     };
@@ -580,7 +577,7 @@ fn root_t(net: &Net, dk: f64) -> Iv {
     let [zs, zr] = net.gradient(2);
     let z = centre[2].add(zs.mul(ds)).add(zr.mul(dr));
     let narrow = z.div_point(dk);
-    Iv {
+    Interval {
         lo: narrow.lo.max(whole.lo),
         hi: narrow.hi.min(whole.hi),
     }

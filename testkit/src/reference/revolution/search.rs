@@ -16,9 +16,9 @@
 //!   window and either rounds to one `f64` or is narrower than
 //!   `2^-70·(1 + |t|)`.
 
-use super::exact::Frac;
 use super::ray::RayData;
 use super::spans::Span;
+use crate::reference::exact::Frac;
 use num_bigint::{BigInt, Sign};
 use num_traits::{One, Zero};
 
@@ -307,9 +307,9 @@ pub fn nearest(spans: &[Span], ray: &RayData) -> Found {
     }
 }
 
-#[cfg(test)]
-/// Every certified root in the window, for tests: `Err` if one is unsure.
-pub fn all_roots(spans: &[Span], ray: &RayData) -> Result<Vec<(f64, f64)>, ()> {
+/// Every certified root `(t, u)` in the window, ascending in `t`, for
+/// tests; `None` if one is unsure.
+pub fn all_roots(spans: &[Span], ray: &RayData) -> Option<Vec<(f64, f64)>> {
     let mut roots = Vec::new();
     for c in candidates(spans, ray) {
         let c = match c {
@@ -318,10 +318,10 @@ pub fn all_roots(spans: &[Span], ray: &RayData) -> Result<Vec<(f64, f64)>, ()> {
         };
         match c {
             Some(Cand::Hit { t, u, .. }) => roots.push((t, u)),
-            Some(_) => return Err(()),
+            Some(_) => return None,
             None => {}
         }
     }
     roots.sort_by(|a, b| a.0.total_cmp(&b.0));
-    Ok(roots)
+    Some(roots)
 }

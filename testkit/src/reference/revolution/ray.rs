@@ -9,8 +9,8 @@
 //! `K2 = B² + D²`, `K3 = d_y²`. With all six ray numbers written as integers
 //! over one power of two, a positive multiple of `f` has integer weights.
 
-use super::exact::{Frac, common_exponent, shifted};
 use super::spans::Span;
+use crate::reference::exact::{Frac, common_exponent, shifted};
 use num_bigint::BigInt;
 use num_traits::Signed;
 use revolve::Ray;

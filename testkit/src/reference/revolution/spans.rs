@@ -11,7 +11,7 @@
 //! `(Σ a_i B_i^p)(Σ b_j B_j^p) = Σ_k B_k^{2p} Σ_{i+j=k} C(p,i)C(p,j)/C(2p,k) a_i b_j`,
 //! and with `b ≡ 1` this is degree elevation from `p` to `2p`.
 
-use super::exact::{Frac, lcm};
+use crate::reference::exact::{Frac, lcm};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -100,8 +100,7 @@ impl Span {
         self.b == next.a && self.pts.last() == next.pts.first()
     }
 
-    /// The exact point at local parameter `s` (de Casteljau).
-    #[cfg(test)]
+    /// The exact point at local parameter `s` (de Casteljau), for tests.
     pub fn eval(&self, s: &Q) -> (Q, Q) {
         let mut c = self.pts.clone();
         let r = Q::one() - s;
