@@ -51,8 +51,8 @@ use common::patch_shapes;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use revolve::nalgebra::{Point3, Unit, Vector3};
 use revolve::{
-    Aabb, BezierPatches, BezierSurface, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector,
-    Ray, Revolution, Surface,
+    Aabb, BezierPatches, BezierSurface, Curve, Hit, Intersect, NewtonIntersector, PatchBounds, Ray,
+    Revolution, Surface,
 };
 
 const N_RAYS: usize = 1024;
@@ -133,7 +133,7 @@ fn config() -> Criterion {
 /// Patch-tree depths of the Newton intersector benchmarked.
 const NEWTON_DEPTHS: [u32; 2] = [6, 10];
 
-fn bench_surface<S: BoundedSurface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
+fn bench_surface<S: PatchBounds + Intersect>(c: &mut Criterion, name: &str, s: &S) {
     let b = s.bounds();
     let sets = [
         ("random", box_rays(&b, false, 1)),
@@ -268,7 +268,7 @@ fn bench_per_ray(
 /// The single-ray `intersect` (`single`) and `intersect_batch` in batches
 /// of [`LANES`] (`batch8`) on the same random and camera rays, as time per
 /// ray; the set-up checks that both give the same hits.
-fn bench_batches<S: BoundedSurface + Intersect>(c: &mut Criterion, name: &str, s: &S) {
+fn bench_batches<S: PatchBounds + Intersect>(c: &mut Criterion, name: &str, s: &S) {
     let b = s.bounds();
     let sets = [
         ("random", box_rays(&b, false, 1)),

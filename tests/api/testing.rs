@@ -117,7 +117,7 @@ fn random_net(state: &mut u64, rows: usize, cols: usize) -> Vec<Vec<Point3<f64>>
 /// is too small.
 #[test]
 fn the_bound_checker_accepts_crate_surfaces_and_catches_a_short_box() {
-    use revolve::{Aabb, BSplineSurface, BezierSurface, BoundedSurface, NurbsSurface};
+    use revolve::{Aabb, BSplineSurface, BezierSurface, NurbsSurface, PatchBounds};
     let mut state = 0x0B0D_u64;
     for (rows, cols) in [(2, 2), (4, 4), (3, 5), (6, 2)] {
         let bezier = BezierSurface::new(random_net(&mut state, rows, cols)).unwrap();
@@ -174,7 +174,7 @@ fn the_bound_checker_accepts_crate_surfaces_and_catches_a_short_box() {
             Some(Vector3::z_axis())
         }
     }
-    impl BoundedSurface for ShortBox {
+    impl PatchBounds for ShortBox {
         fn bound_patch(&self, u: (f64, f64), v: (f64, f64)) -> Aabb {
             Aabb {
                 min: Point3::new(u.0, v.0, 0.0),

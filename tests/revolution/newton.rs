@@ -1,5 +1,5 @@
 //! The generic Newton intersector (`NewtonIntersector`) and the conservative
-//! patch bounds it is seeded from (`BoundedSurface` for `Revolution`).
+//! patch bounds it is seeded from (`PatchBounds` for `Revolution`).
 //!
 //! References: closed forms for degree-1 profiles (cylinder, cone, disk), and
 //! the exact intersector of `Revolution` (univariate reduction, no missed
@@ -19,8 +19,7 @@ use common::{GLASS, uniform_cubic};
 use revolve::nalgebra::{Point2, Point3, Unit, Vector2, Vector3};
 use revolve::ray::newton::{MAX_DEPTH, NewtonFinish, NewtonReport};
 use revolve::{
-    Aabb, Bezier, BoundedSurface, Curve, Hit, Intersect, NewtonIntersector, Ray, Revolution,
-    Surface,
+    Aabb, Bezier, Curve, Hit, Intersect, NewtonIntersector, PatchBounds, Ray, Revolution, Surface,
 };
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -304,7 +303,7 @@ struct Comparison {
     worst_match: f64,
 }
 
-fn compare<S: BoundedSurface>(exact: &dyn Intersect, s: &S, depth: u32, rays: usize) -> Comparison {
+fn compare<S: PatchBounds>(exact: &dyn Intersect, s: &S, depth: u32, rays: usize) -> Comparison {
     let newton = NewtonIntersector::new(s, depth);
     let bounds = exact.bounds();
     let scale = bounds.scale();
@@ -399,7 +398,7 @@ fn placed_and_scaled_surfaces_agree_with_the_exact_solver() {
 // Conservative patch bounds
 
 /// Asserts that `bound_patch` contains a dense sample of `S` over the patch.
-fn assert_contains_patch<S: BoundedSurface>(s: &S, u: (f64, f64), v: (f64, f64)) {
+fn assert_contains_patch<S: PatchBounds>(s: &S, u: (f64, f64), v: (f64, f64)) {
     let b = s.bound_patch(u, v);
     const N: usize = 24;
     for i in 0..=N {
@@ -471,7 +470,7 @@ fn patch_boxes_contain_the_patch() {
     check_patches("arc (no spans)", &Revolution::new(Arc), &mut rng);
 }
 
-fn check_patches<S: BoundedSurface>(name: &str, s: &S, rng: &mut Rng) {
+fn check_patches<S: PatchBounds>(name: &str, s: &S, rng: &mut Rng) {
     println!("checking {name}");
     for [u, v] in random_patches(rng, s.domain(), 150) {
         assert_contains_patch(s, u, v);

@@ -24,10 +24,9 @@ use revolve_testkit as common;
 use common::Rng;
 use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2, Vector3};
 use revolve::{
-    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface,
-    BoundedSurface, Curve, Error, Hit, Intersect, MAX_COORDINATE, MAX_SEGMENTS, Mesh,
-    NewtonIntersector, Nurbs, NurbsSurface, RationalBezier, RationalBezierSpan, Ray, Revolution,
-    Surface, Tolerance,
+    Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface, Curve, Error,
+    Hit, Intersect, MAX_COORDINATE, MAX_SEGMENTS, Mesh, NewtonIntersector, Nurbs, NurbsSurface,
+    PatchBounds, RationalBezier, RationalBezierSpan, Ray, Revolution, Surface, Tolerance,
 };
 use std::any::Any;
 use std::cell::RefCell;
@@ -1279,10 +1278,10 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
             });
         }
         let (u1, v1) = (f.parameter(du), f.parameter(dv));
-        if let Some(b) = f.call("BoundedSurface::bound_patch", || {
+        if let Some(b) = f.call("PatchBounds::bound_patch", || {
             s.bound_patch((u.min(u1), u.max(u1)), (v.min(v1), v.max(v1)))
         }) {
-            f.check(sane_box(&b), "BoundedSurface::bound_patch", || {
+            f.check(sane_box(&b), "PatchBounds::bound_patch", || {
                 format!("{profile}: {b:?}")
             });
         }

@@ -11,8 +11,8 @@ use common::tensor_shapes::sphere_octant;
 use common::random_tensors::{Xorshift64Star as Rng, clamped_knots};
 use revolve::nalgebra::{Point3, Point4, Vector3};
 use revolve::{
-    BSpline, BSplineSurface, BezierPatch, BezierSurface, BoundedSurface, Curve, Error, Intersect,
-    NewtonIntersector, NurbsSurface, RationalBezierPatch, Ray, Surface,
+    BSpline, BSplineSurface, BezierPatch, BezierSurface, Curve, Error, Intersect,
+    NewtonIntersector, NurbsSurface, PatchBounds, RationalBezierPatch, Ray, Surface,
 };
 
 fn close(a: Point3<f64>, b: Point3<f64>, tol: f64) -> bool {
@@ -469,7 +469,7 @@ fn partials_match_central_differences() {
     }
 }
 
-fn assert_bounds_contain_samples<S: BoundedSurface>(s: &S, rng: &mut Rng) {
+fn assert_bounds_contain_samples<S: PatchBounds>(s: &S, rng: &mut Rng) {
     let [du, dv] = s.domain();
     for _ in 0..20 {
         let mut u = (rng.range(du.0, du.1), rng.range(du.0, du.1));
@@ -883,7 +883,7 @@ fn random_input_never_panics_and_valid_surfaces_evaluate_finitely() {
         let n = NurbsSurface::new((p, q), knots.clone(), grid.clone(), weights);
         let b = BSplineSurface::new((p, q), knots, grid.clone());
         let z = BezierSurface::new(grid);
-        let mut check = |s: &dyn BoundedSurface| {
+        let mut check = |s: &dyn PatchBounds| {
             built += 1;
             let params = [
                 rng.next(),
@@ -995,5 +995,20 @@ fn rational_partials_beyond_the_limit_are_refused() {
     assert!(
         matches!(n, Err(Error::DerivativeOverflow { order: 1 })),
         "{n:?}"
+    );
+}
+
+/// `BoundedSurface`, the former name of `PatchBounds`, still names the same
+/// trait: a bound written with it takes every tensor surface, and gives the
+/// same boxes.
+#[test]
+fn former_name_bounded_surface_is_patch_bounds() {
+    fn boxes<S: revolve::BoundedSurface>(s: &S) -> revolve::Aabb {
+        s.bound_patch((0.25, 0.5), (0.0, 1.0))
+    }
+    let s = sphere_octant(2.0);
+    assert_eq!(
+        boxes(&s),
+        revolve::PatchBounds::bound_patch(&s, (0.25, 0.5), (0.0, 1.0))
     );
 }

@@ -6,7 +6,7 @@
 use crate::common::Rng;
 use crate::model::Method;
 use revolve::nalgebra::{Isometry3, Matrix3, Vector3};
-use revolve::{Aabb, BezierSurface, BoundedSurface, Curve, Intersect, Ray, Revolution, Surface};
+use revolve::{Aabb, BezierSurface, Curve, Intersect, PatchBounds, Ray, Revolution, Surface};
 use std::f64::consts::TAU;
 
 /// The margin `ε` of the acceptance test: a hit needs `t > ε` and both

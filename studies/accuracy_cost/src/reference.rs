@@ -486,7 +486,7 @@ mod tests {
     // -- The study's profiles --------------------------------------------
 
     // The study's profiles, shared with the benches and tests
-    // (`tests/common`): only the checks use them, not the reference.
+    // (`revolve-testkit`): only the checks use them, not the reference.
     use crate::common::{GLASS, VASE};
 
     fn points(p: &[(f64, f64)]) -> Vec<Point2<f64>> {

@@ -21,7 +21,7 @@ use crate::mesh_baseline::MeshBaseline;
 use crate::model::{ErrorStats, FAR_HIT, Method, Row};
 use crate::reference::{Certifier, ExactProfile};
 use revolve::{
-    Aabb, BSpline, Bezier, BoundedSurface, Curve, Intersect, NewtonIntersector, Nurbs, Ray,
+    Aabb, BSpline, Bezier, Curve, Intersect, NewtonIntersector, Nurbs, PatchBounds, Ray,
     Revolution, Tolerance,
 };
 use std::hint::black_box;
@@ -357,7 +357,7 @@ pub struct Newton<S> {
     pub tolerance: f64,
 }
 
-impl<S: BoundedSurface> Method for Newton<S> {
+impl<S: PatchBounds> Method for Newton<S> {
     fn series(&self) -> String {
         format!("revolve Newton, depth {}", self.solver.depth())
     }
