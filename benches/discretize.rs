@@ -6,7 +6,7 @@
 //! flattening at each tolerance and prints, once per tolerance and outside the
 //! timed loop, how many samples it produced and the bound it certified.
 //!
-//! Run: `cargo bench --bench discretize` (CI: `cargo bench --bench discretize -- --test`).
+//! Run: `cargo bench -p revolve-benches --bench discretize` (CI: `cargo bench -p revolve-benches --bench discretize -- --test`).
 
 use revolve_testkit as common;
 

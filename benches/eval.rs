@@ -16,7 +16,7 @@
 //! `projector/…` on a prepared [`CurveProjector`], `method/…` through
 //! [`Curve::nearest_point`] (which prepares the spans on every call).
 //!
-//! Run: `cargo bench --bench eval` (CI: `cargo bench --bench eval -- --test`).
+//! Run: `cargo bench -p revolve-benches --bench eval` (CI: `cargo bench -p revolve-benches --bench eval -- --test`).
 
 use revolve_testkit as common;
 

@@ -35,8 +35,8 @@
 //! each batch 8 neighbouring pixels of one row: coherent rays;
 //! `revolve_testkit::camera`, the ray caster's formulas).
 //!
-//! Run: `cargo bench --bench intersect` (CI: `-- --test`); the batch groups
-//! and their unit alone: `cargo bench --bench intersect --
+//! Run: `cargo bench -p revolve-benches --bench intersect` (CI: `-- --test`); the batch groups
+//! and their unit alone: `cargo bench -p revolve-benches --bench intersect --
 //! 'intersect_batch|intersect_triangle'`. The hit rate of every set is
 //! printed once.
 

@@ -46,7 +46,11 @@ executable() {
 # $OUT/SIDE-*.
 build() {
     local side=$1 dir=$2
-    (cd "$dir" && nice -n 10 cargo bench --bench intersect --no-run --message-format=json) \
+    # The benches are the package revolve-benches since issue 25; before,
+    # they were the root package's.
+    local package=()
+    if [ -e "$dir/benches/Cargo.toml" ]; then package=(-p revolve-benches); fi
+    (cd "$dir" && nice -n 10 cargo bench "${package[@]}" --bench intersect --no-run --message-format=json) \
         | executable | xargs -I{} cp {} "$OUT/$side-intersect"
     if [ -n "${CALLGRIND_RAYS:-}" ]; then
         (cd "$dir" && nice -n 10 cargo build --release --example ray_profile --message-format=json) \

@@ -9,8 +9,7 @@
 
 use std::path::Path;
 
-use image::{ImageFormat, RgbImage};
-
+use crate::png_file::{self, Rgb8};
 use crate::render::Image;
 use crate::scene::ToneMap;
 
@@ -35,7 +34,7 @@ pub fn encode(c: f64, tone_map: ToneMap) -> u8 {
 }
 
 /// The image as 8-bit RGB; an error when its bytes cannot be allocated.
-pub fn to_rgb8(image: &Image, tone_map: ToneMap) -> Result<RgbImage, String> {
+pub fn to_rgb8(image: &Image, tone_map: ToneMap) -> Result<Rgb8, String> {
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(3 * image.pixels.len())
@@ -47,8 +46,14 @@ pub fn to_rgb8(image: &Image, tone_map: ToneMap) -> Result<RgbImage, String> {
             encode(c.z, tone_map),
         ]);
     }
-    RgbImage::from_raw(image.width, image.height, bytes)
-        .ok_or_else(|| "the image's pixels do not match its size".to_string())
+    if bytes.len() as u64 != 3 * u64::from(image.width) * u64::from(image.height) {
+        return Err("the image's pixels do not match its size".to_string());
+    }
+    Ok(Rgb8 {
+        width: image.width,
+        height: image.height,
+        bytes,
+    })
 }
 
 /// Checks early that `path` can be written (creating its folder), so a
@@ -71,8 +76,7 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
 /// Writes the image to `path` as PNG (whatever the file's extension).
 pub fn write_png(image: &Image, tone_map: ToneMap, path: &Path) -> Result<(), String> {
     check_writable(path)?;
-    to_rgb8(image, tone_map)?
-        .save_with_format(path, ImageFormat::Png)
+    png_file::write(path, &to_rgb8(image, tone_map)?)
         .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
@@ -80,7 +84,6 @@ pub fn write_png(image: &Image, tone_map: ToneMap, path: &Path) -> Result<(), St
 mod tests {
     use super::*;
     use crate::scene::Color;
-    use image::Rgb;
 
     #[test]
     fn clamp_truncates_like_the_framework() {
@@ -111,9 +114,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("raycast-png-{}", std::process::id()));
         let path = dir.join("t.png");
         write_png(&image, ToneMap::Clamp, &path).unwrap();
-        let back = image::open(&path).unwrap().to_rgb8();
-        assert_eq!(back.get_pixel(0, 0), &Rgb([255, 0, 51]));
-        assert_eq!(back.get_pixel(1, 0), &Rgb([0, 127, 255]));
+        let back = png_file::read(&path, png_file::any_size).unwrap();
+        assert_eq!(back.pixel(0, 0), [255, 0, 51]);
+        assert_eq!(back.pixel(1, 0), [0, 127, 255]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

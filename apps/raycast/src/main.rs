@@ -15,6 +15,7 @@ mod lights;
 mod optics;
 mod parse;
 mod path;
+mod png_file;
 mod render;
 mod report;
 mod sampling;

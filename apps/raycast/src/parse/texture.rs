@@ -5,13 +5,12 @@
 //! an alpha channel is ignored and 16-bit images are reduced to 8 bits.
 //!
 //! A texture is at most [`MAX_TEXTURE_SIDE`] pixels on a side and
-//! [`MAX_TEXTURE_PIXELS`] in all (the decoder refuses larger sides before
-//! allocating; the texels are allocated fallibly).
+//! [`MAX_TEXTURE_PIXELS`] in all, checked on the file's header before any
+//! pixel is decoded; the texels are allocated fallibly.
 
 use std::path::Path;
 
-use image::{ImageReader, Limits};
-
+use crate::png_file;
 use crate::scene::{Color, Texture};
 
 /// The longest side of a texture, in pixels.
@@ -21,15 +20,35 @@ pub(super) const MAX_TEXTURE_PIXELS: u64 = 1 << 24;
 
 /// Reads the image at `path` (PNG).
 pub(super) fn read_texture(path: &Path) -> Result<Texture, String> {
-    let mut reader = ImageReader::open(path).map_err(|e| e.to_string())?;
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
-    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
-    reader.limits(limits);
-    let image = reader.decode().map_err(|e| e.to_string())?;
-    let (width, height) = (image.width(), image.height());
+    let image = png_file::read(path, texture_size)?;
+    let (width, height) = (image.width, image.height);
+    let count = u64::from(width) * u64::from(height);
+    let mut pixels = Vec::new();
+    pixels
+        .try_reserve_exact(count as usize)
+        .map_err(|e| format!("cannot allocate the texture ({width}×{height} pixels): {e}"))?;
+    pixels.extend(
+        image
+            .pixels()
+            .map(|[r, g, b]| Color::new(r.into(), g.into(), b.into()) / 255.0),
+    );
+    Ok(Texture {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// Refuses an empty texture and one over the limits, from its size.
+fn texture_size(width: u32, height: u32) -> Result<(), String> {
     if width == 0 || height == 0 {
         return Err("the image is empty".into());
+    }
+    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "the image is {width}×{height} pixels, over the limit of {MAX_TEXTURE_SIDE} pixels \
+             a side"
+        ));
     }
     let count = u64::from(width) * u64::from(height);
     if count > MAX_TEXTURE_PIXELS {
@@ -38,19 +57,5 @@ pub(super) fn read_texture(path: &Path) -> Result<Texture, String> {
              {MAX_TEXTURE_PIXELS} pixels"
         ));
     }
-    let image = image.to_rgb8();
-    let mut pixels = Vec::new();
-    pixels
-        .try_reserve_exact(count as usize)
-        .map_err(|e| format!("cannot allocate the texture ({width}×{height} pixels): {e}"))?;
-    pixels.extend(
-        image
-            .pixels()
-            .map(|p| Color::new(p[0].into(), p[1].into(), p[2].into()) / 255.0),
-    );
-    Ok(Texture {
-        width,
-        height,
-        pixels,
-    })
+    Ok(())
 }

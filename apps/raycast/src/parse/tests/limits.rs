@@ -143,7 +143,7 @@ fn image_sides_are_bounded_at_their_value() {
 fn a_texture_wider_than_the_limit_is_refused_by_the_decoder() {
     let dir = super::TempDir::new("wide-texture");
     let png = dir.0.join("wide.png");
-    image::RgbImage::new(16385, 1).save(&png).unwrap();
+    crate::png_file::write_raw(&png, 16385, 1, png::ColorType::Rgb, &vec![0; 3 * 16385]).unwrap();
     let text = format!("{CAMERA}Materials {{ Material {{ texture wide.png }} }}\n");
     let e = dir.parse_scene(&text).unwrap_err();
     assert_eq!((e.line, e.column), (2, 32));

@@ -136,14 +136,15 @@ fn material_effect_keywords() {
 #[test]
 fn material_texture_is_linear_with_row_zero_on_top() {
     let dir = TempDir::new("texture");
-    let image = image::RgbaImage::from_fn(2, 2, |x, y| match (x, y) {
-        (0, 0) => image::Rgba([255, 0, 0, 255]),
-        (1, 0) => image::Rgba([0, 255, 0, 0]),
-        (0, 1) => image::Rgba([0, 0, 255, 255]),
-        _ => image::Rgba([51, 102, 204, 128]),
-    });
-    image
-        .save(dir.0.join("wood.png"))
+    // RGBA, row 0 on top; the alpha channel is ignored.
+    let rgba = [
+        [255, 0, 0, 255],
+        [0, 255, 0, 0],
+        [0, 0, 255, 255],
+        [51, 102, 204, 128],
+    ]
+    .concat();
+    crate::png_file::write_raw(&dir.0.join("wood.png"), 2, 2, png::ColorType::Rgba, &rgba)
         .expect("write the PNG fixture");
     let scene = dir
         .parse_scene(&format!(
