@@ -138,17 +138,20 @@ impl Fuzz {
     }
 }
 
-/// The seeds to run: `0..seeds`, or only `FUZZ_SEED` when that is set (to
-/// reproduce a failure).
-fn seed_range(seeds: u64) -> std::ops::Range<u64> {
+/// The seeds to run: `seeds`, or only `FUZZ_SEED` when that is set (to
+/// reproduce a failure; none when it lies outside `seeds`).
+fn seed_range(seeds: std::ops::Range<u64>) -> std::ops::Range<u64> {
     match std::env::var("FUZZ_SEED").ok().and_then(|s| s.parse().ok()) {
-        Some(seed) => seed..seed + 1,
-        None => 0..seeds,
+        Some(seed) if seeds.contains(&seed) => seed..seed + 1,
+        Some(_) => 0..0,
+        None => seeds,
     }
 }
 
-/// Runs `case` for seeds `0..seeds` on a worker thread and watches it.
-fn fuzz(name: &'static str, seeds: u64, case: fn(&mut Fuzz)) {
+/// Runs `case` for each seed of `seeds` on a worker thread and watches it.
+/// A long target is split into tests over parts of one seed range, so the
+/// test harness runs the parts side by side.
+fn fuzz(name: &'static str, seeds: std::ops::Range<u64>, case: fn(&mut Fuzz)) {
     quiet_fuzz_panics();
     let seeds = seed_range(seeds);
     let progress = Arc::new(Progress {
@@ -806,14 +809,33 @@ impl Curve<2> for UserCurve {
 
 /// Curve constructors and evaluators: Bezier, BSpline (new, uniform,
 /// clamped, insert_knot, derivative splines, flatten), in 1, 2 and 3
-/// dimensions.
-#[test]
-fn fuzz_curves() {
-    fuzz("curves", 100_000, |f| match f.below(4) {
+/// dimensions; seeds 0..100 000 in four parts.
+fn fuzz_curves(seeds: std::ops::Range<u64>) {
+    fuzz("curves", seeds, |f| match f.below(4) {
         0 => curve_case::<1>(f),
         1 => curve_case::<3>(f),
         _ => curve_case::<2>(f),
     });
+}
+
+#[test]
+fn fuzz_curves_part_1() {
+    fuzz_curves(0..25_000);
+}
+
+#[test]
+fn fuzz_curves_part_2() {
+    fuzz_curves(25_000..50_000);
+}
+
+#[test]
+fn fuzz_curves_part_3() {
+    fuzz_curves(50_000..75_000);
+}
+
+#[test]
+fn fuzz_curves_part_4() {
+    fuzz_curves(75_000..100_000);
 }
 
 fn curve_case<const D: usize>(f: &mut Fuzz) {
@@ -1010,7 +1032,7 @@ impl Fuzz {
 /// the trait's default methods: no panic, no hang.
 #[test]
 fn fuzz_user_curves() {
-    fuzz("user curves", 400_000, |f| {
+    fuzz("user curves", 0..400_000, |f| {
         let kind = KINDS[f.below(KINDS.len())];
         let r = if f.chance(4) { f.number() } else { f.scale() };
         let c = UserCurve { kind, r };
@@ -1061,7 +1083,7 @@ fn fuzz_user_curves() {
 /// Boxes: empty, infinite, NaN and ordinary ones through every method.
 #[test]
 fn fuzz_boxes() {
-    fuzz("boxes", 500_000, |f| {
+    fuzz("boxes", 0..500_000, |f| {
         let b = match f.below(6) {
             0 => Aabb::EMPTY,
             1 => Aabb {
@@ -1182,7 +1204,7 @@ fn profile(f: &mut Fuzz) -> Option<Profile> {
 /// intersector), and tessellation.
 #[test]
 fn fuzz_revolutions() {
-    fuzz("revolutions", 20_000, |f| match profile(f) {
+    fuzz("revolutions", 0..20_000, |f| match profile(f) {
         Some(Profile::Bezier(c)) => revolution_case(f, c, "Bezier", true),
         Some(Profile::BSpline(c)) => revolution_case(f, c, "BSpline", true),
         Some(Profile::Nurbs(c)) => revolution_case(f, c, "Nurbs", true),
@@ -1333,7 +1355,7 @@ impl Fuzz {
 /// tolerances, extreme rays and ranges, and its one-run entry point.
 #[test]
 fn fuzz_newton() {
-    fuzz("newton", 3_000, |f| match profile(f) {
+    fuzz("newton", 0..3_000, |f| match profile(f) {
         Some(Profile::Bezier(c)) => newton_case(f, c),
         Some(Profile::BSpline(c)) => newton_case(f, c),
         Some(Profile::Nurbs(c)) => newton_case(f, c),
@@ -1426,7 +1448,7 @@ fn fuzz_testing_support() {
         strategy.new_tree(&mut runner).ok().map(|t| t.current())
     }
 
-    fuzz("testing support", 1_000, |f| {
+    fuzz("testing support", 0..1_000, |f| {
         let scale = f.number();
         let (a, b) = (f.count() * f.below(3), f.count());
         let degrees = if f.chance(8) {
@@ -1491,7 +1513,7 @@ fn fuzz_testing_support() {
 
 #[test]
 fn fuzz_tensor_surfaces() {
-    fuzz("tensor surfaces", 30_000, |f| {
+    fuzz("tensor surfaces", 0..30_000, |f| {
         let (rows, cols) = (1 + f.below(5), 1 + f.below(5));
         let scale = f.scale();
         let mut grid: Vec<Vec<Point3<f64>>> = (0..rows)
