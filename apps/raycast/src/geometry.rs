@@ -16,6 +16,9 @@
 //! shapes, singular transforms) are left out at build time. Queries do not
 //! allocate.
 
+/// Rays traced together at most (longer batches are cut into chunks).
+pub const LANES: usize = 8;
+
 #[path = "geometry/batch.rs"]
 mod batch;
 #[path = "geometry/emitter.rs"]
@@ -52,7 +55,6 @@ use revolve::ray::bvh;
 use revolve::{BoxRay, Bvh};
 use shapes::LocalHit;
 
-pub use batch::LANES;
 pub use emitter::Emitter;
 
 /// Objects per BVH leaf: one, since an object test (a transform, maybe a

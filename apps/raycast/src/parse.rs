@@ -81,6 +81,8 @@ mod cursor;
 mod curves;
 #[path = "parse/document.rs"]
 mod document;
+#[path = "parse/keywords.rs"]
+mod keywords;
 #[path = "parse/lexer.rs"]
 mod lexer;
 #[path = "parse/lights.rs"]

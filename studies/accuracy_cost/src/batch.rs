@@ -7,8 +7,8 @@
 //! ([`crate::study::measured_row`]): only the way the ray set is cast
 //! ([`Method::nearest_all`]) differs.
 
+use crate::memory::built;
 use crate::model::Method;
-use crate::study::built;
 use revolve::{Hit, Intersect, Ray};
 
 /// Rays per call of `intersect_batch`.

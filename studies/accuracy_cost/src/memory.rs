@@ -131,6 +131,14 @@ pub fn installed() -> bool {
 /// These tests are meaningful only in a binary that declares
 /// `HeapCounter` as its `#[global_allocator]` (the accuracy_cost example and
 /// its test build do); elsewhere they fail on purpose at the first assert.
+/// Builds a value, timing it and counting the heap it holds:
+/// `(value, seconds, bytes)`.
+pub fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
+    let start = std::time::Instant::now();
+    let (m, bytes) = held_by(build);
+    (m, start.elapsed().as_secs_f64(), bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

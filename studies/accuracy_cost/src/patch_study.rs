@@ -21,11 +21,12 @@
 
 use crate::batch::{Single, record_single_and_batched};
 use crate::course::CourseNewton;
+use crate::memory::built;
 use crate::mesh_baseline::MeshBaseline;
 use crate::model::{Method, Row};
 use crate::patch_shapes;
 use crate::reference::PatchReference;
-use crate::study::{Cases, Newton, Plan, built, measured_row};
+use crate::study::{Cases, Newton, Plan, measured_row};
 use revolve::nalgebra::Vector3;
 use revolve::{Aabb, BezierPatches, BezierSurface, Intersect, NewtonIntersector, Ray, Tolerance};
 

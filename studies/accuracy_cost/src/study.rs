@@ -16,7 +16,7 @@
 use crate::batch::{Single, record_single_and_batched};
 use crate::closed_form::ClosedForm;
 use crate::course::CourseNewton;
-use crate::memory;
+use crate::memory::built;
 use crate::mesh_baseline::MeshBaseline;
 use crate::model::{ErrorStats, FAR_HIT, Method, Row};
 use crate::reference::{Certifier, ExactProfile};
@@ -367,13 +367,6 @@ impl<S: PatchBounds> Method for Newton<S> {
     fn nearest(&mut self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
         self.solver.intersect(ray, t_min, t_max).map(|h| h.t)
     }
-}
-
-/// Builds a method, timing it and counting the heap it holds.
-pub fn built<M>(build: impl FnOnce() -> M) -> (M, f64, usize) {
-    let start = Instant::now();
-    let (m, bytes) = memory::held_by(build);
-    (m, start.elapsed().as_secs_f64(), bytes)
 }
 
 /// The row of `method` on `shape`'s `cases`, measured `repeats` times;

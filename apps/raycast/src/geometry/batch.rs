@@ -11,6 +11,7 @@
 //! Coherent rays (neighbouring camera rays) name the same objects in the
 //! same rounds, so the batches are full.
 
+use super::LANES;
 use revolve::Ray;
 use revolve::nalgebra::{Point3, Vector3};
 
@@ -18,9 +19,6 @@ use super::bvh::{BoxRay, Walk};
 use super::object::Placed;
 use super::shapes::LocalHit;
 use super::{IntersectStats, SurfaceHit, World};
-
-/// Rays traced together at most (longer batches are cut into chunks).
-pub const LANES: usize = 8;
 
 impl World {
     /// For every `rays[i]`, the nearest hit with `t_min < t`, as

@@ -13,7 +13,7 @@ use revolve::nalgebra::{Matrix4, Point3, Vector3};
 use revolve::{Aabb, Ray};
 
 use super::IntersectStats;
-use super::batch::LANES;
+use super::LANES;
 use super::mesh::MeshShape;
 use super::revolution::RevolutionShape;
 use super::shapes::{Annulus, BoxShape, LocalHit, Parallelogram, Plane, Sphere, Triangle};

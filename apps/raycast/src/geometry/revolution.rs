@@ -36,7 +36,7 @@ use revolve::nalgebra::{Point3, Vector3};
 use revolve::{Aabb, Curve, Hit, Intersect, Ray, Revolution, Surface};
 
 use super::IntersectStats;
-use super::batch::LANES;
+use super::LANES;
 use super::shapes::LocalHit;
 use crate::scene::RevolutionBody;
 

@@ -11,8 +11,8 @@ use std::path::Path;
 
 use revolve::nalgebra::{Point3, Vector3};
 
+use super::keywords::{BLOCK_KEYWORDS, OBJECTS};
 use super::lexer::{Kind, Pos, Token, tokenize};
-use super::objects::OBJECTS;
 use super::suggest::did_you_mean;
 use super::{ParseError, ParseWarning};
 
@@ -24,21 +24,6 @@ pub(super) type Result<T> = std::result::Result<T, ParseError>;
 /// finite: it sums at most a few thousand terms, each this bound times
 /// factors whose product stays under 2¹⁰⁰ (an upper bound on the whole ray tree).
 pub(super) const MAX_RADIANCE: f64 = 1e100;
-
-/// The block keywords of the format other than the objects
-/// ([`OBJECTS`]), to explain a misplaced one.
-const BLOCK_KEYWORDS: &[&str] = &[
-    "PerspectiveCamera",
-    "Lights",
-    "DirectionalLight",
-    "PointLight",
-    "AreaLight",
-    "Background",
-    "Materials",
-    "PhongMaterial",
-    "Material",
-    "Render",
-];
 
 /// `x` for a message: plain decimals, or the exponent form for magnitudes
 /// that would print as a long run of zeros (below 1e-4 or from 1e16 on).

@@ -19,34 +19,13 @@ use revolve::nalgebra::Matrix4;
 use super::counted::Counter;
 use super::cursor::{Cursor, Result};
 use super::curves::{CURVES, rev_surface, tube};
+use super::keywords::OBJECTS;
 use super::lexer::{Pos, Token};
-use super::patches::bezier_patches;
 use super::resources::Resources;
 use super::shapes::primitive;
-use super::surfaces::{SURFACES, surface};
+use super::surfaces::{SURFACES, bezier_patches, surface};
 use super::transform::{STEPS, step};
 use crate::scene::{Object, Shape};
-
-/// The object keywords.
-pub(super) const OBJECTS: &[&str] = &[
-    "Group",
-    "Transform",
-    "Sphere",
-    "Plane",
-    "Triangle",
-    "TriangleMesh",
-    "Box",
-    "Disk",
-    "Ring",
-    "Rectangle",
-    "RevSurface",
-    "BezierCurve",
-    "BsplineCurve",
-    "NurbsCurve",
-    "BezierSurface",
-    "BsplineSurface",
-    "BezierPatches",
-];
 
 /// The deepest nesting of `Group`s and `Transform`s accepted (the top-level
 /// group counts as 1).

@@ -1,5 +1,6 @@
-//! `BezierPatches { file PATH }`: a model of bicubic Bézier patches read
-//! from a file in the classic layout of Newell's teapot.
+//! The patches file of `BezierPatches { file PATH }` (the block is parsed in
+//! [`super::surfaces`]): bicubic Bézier patches in the classic layout of
+//! Newell's teapot.
 //!
 //! ```text
 //! N                       the number of patches, at least 1
@@ -28,30 +29,10 @@ use std::path::Path;
 use revolve::nalgebra::Point3;
 use revolve::{BezierPatches, BezierSurface};
 
-use super::cursor::{Cursor, Result as ParseResult};
 use super::lexer::is_number;
-use super::resources::Resources;
-use crate::scene::Shape;
 
 /// Control points of a bicubic patch.
 const PATCH_POINTS: usize = 16;
-
-/// `BezierPatches { file PATH }` (after its keyword).
-pub(super) fn bezier_patches(c: &mut Cursor<'_>, res: &mut Resources) -> ParseResult<Shape> {
-    const NAME: &str = "BezierPatches";
-    let open = c.open(NAME)?;
-    let mut model = None;
-    while let Some(key) = c.key(NAME, open)? {
-        match key.text {
-            "file" => c.field(&mut model, key, NAME, |c, what| {
-                let path = c.word(what)?;
-                res.patches(c, path)
-            })?,
-            _ => return Err(c.unknown(key, NAME, &["file"])),
-        }
-    }
-    Ok(Shape::Surface(c.required(model, "file", NAME)?))
-}
 
 /// Why a patches file could not be read.
 #[derive(Debug)]

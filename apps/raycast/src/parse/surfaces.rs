@@ -24,6 +24,9 @@
 //! weight, a knot at the knot, a wrong knot count or multiplicity at
 //! `uKnots` / `vKnots`, too few rows or columns for the degree at `uDegree` /
 //! `vDegree` — else at the surface's keyword.
+//!
+//! `BezierPatches { file PATH }` is a model of bicubic Bézier patches read
+//! from a file ([`super::patches`]), once per path ([`Resources`]).
 
 use std::sync::Arc;
 
@@ -33,6 +36,7 @@ use revolve::{BSpline, BSplineSurface, BezierSurface, Error, NurbsSurface};
 use super::cursor::{Cursor, Result};
 use super::curves::{Control, control_points, numbers};
 use super::lexer::{Pos, Token};
+use super::resources::Resources;
 use crate::scene::{Shape, SurfaceBody};
 
 /// The surface keywords written with control points.
@@ -280,4 +284,21 @@ impl SurfaceBlock {
             None => c.error(at, format!("invalid {name}: {e}")),
         }
     }
+}
+
+/// `BezierPatches { file PATH }` (after its keyword).
+pub(super) fn bezier_patches(c: &mut Cursor<'_>, res: &mut Resources) -> Result<Shape> {
+    const NAME: &str = "BezierPatches";
+    let open = c.open(NAME)?;
+    let mut model = None;
+    while let Some(key) = c.key(NAME, open)? {
+        match key.text {
+            "file" => c.field(&mut model, key, NAME, |c, what| {
+                let path = c.word(what)?;
+                res.patches(c, path)
+            })?,
+            _ => return Err(c.unknown(key, NAME, &["file"])),
+        }
+    }
+    Ok(Shape::Surface(c.required(model, "file", NAME)?))
 }
