@@ -1,7 +1,7 @@
 //! The dependency order of `src/` runs one way.
 //!
 //! 1. No file of `src/` imports a file that, directly or through others,
-//!    imports it back. Files in a circle can be neither read, tested, moved
+//!    imports it back (nor does a file of the ray caster or the study). Files in a circle can be neither read, tested, moved
 //!    nor replaced one without the other, and layers stop meaning anything.
 //! 2. The layers keep their order ([`LAYERS`]).
 //!
@@ -59,12 +59,12 @@ struct File {
     defs: BTreeSet<String>,
 }
 
-/// `src/lib.rs` is the root, `src/a.rs` and `src/a/mod.rs` are `a`,
-/// `src/a/b.rs` is `a::b`.
+/// `src/lib.rs` (or `src/main.rs`) is the root, `src/a.rs` and
+/// `src/a/mod.rs` are `a`, `src/a/b.rs` is `a::b`.
 fn module_of(path: &str) -> Vec<String> {
     let rel = path.trim_start_matches("src/").trim_end_matches(".rs");
     let mut module: Vec<String> = rel.split('/').map(String::from).collect();
-    if rel == "lib" || module.last().is_some_and(|s| s == "mod") {
+    if rel == "lib" || rel == "main" || module.last().is_some_and(|s| s == "mod") {
         module.pop();
     }
     module
@@ -393,9 +393,18 @@ fn layer_report(graph: &Graph) -> String {
     report
 }
 
-/// Every `.rs` file under `src/`, keyed `src/…`.
+/// Every `.rs` file under the library's `src/`, keyed `src/…`.
 fn read_src() -> Sources {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let sources = read_package(".");
+    assert!(sources.contains_key("src/lib.rs"), "src/lib.rs not found");
+    sources
+}
+
+/// Every `.rs` file under `src/` of the workspace member at `dir`
+/// (relative to the repository's root), keyed `src/…`.
+fn read_package(dir: &str) -> Sources {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+    let root = root.as_path();
     let (mut sources, mut dirs) = (Sources::new(), vec![root.join("src")]);
     while let Some(dir) = dirs.pop() {
         for entry in std::fs::read_dir(dir).expect("a readable directory") {
@@ -409,7 +418,6 @@ fn read_src() -> Sources {
             }
         }
     }
-    assert!(sources.contains_key("src/lib.rs"), "src/lib.rs not found");
     sources
 }
 
@@ -418,6 +426,20 @@ fn no_import_circles() {
     let report = circle_report(&graph_of(&read_src()));
     let hint = "files of src/ import each other; move what ties them";
     assert!(report.is_empty(), "{hint}:\n{report}");
+}
+
+#[test]
+fn no_import_circles_in_the_ray_caster_and_the_study() {
+    for dir in ["apps/raycast", "studies/accuracy_cost"] {
+        let sources = read_package(dir);
+        assert!(
+            sources.contains_key("src/main.rs"),
+            "{dir}/src/main.rs not found"
+        );
+        let report = circle_report(&graph_of(&sources));
+        let hint = format!("files of {dir}/src/ import each other; move what ties them");
+        assert!(report.is_empty(), "{hint}:\n{report}");
+    }
 }
 
 #[test]

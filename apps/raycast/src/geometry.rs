@@ -19,29 +19,18 @@
 /// Rays traced together at most (longer batches are cut into chunks).
 pub const LANES: usize = 8;
 
-#[path = "geometry/batch.rs"]
 mod batch;
-#[path = "geometry/emitter.rs"]
 mod emitter;
-#[path = "geometry/mesh.rs"]
 mod mesh;
-#[path = "geometry/object.rs"]
 mod object;
-#[path = "geometry/revolution.rs"]
 mod revolution;
-#[path = "geometry/shapes.rs"]
 mod shapes;
-#[path = "geometry/surface.rs"]
 mod surface;
 #[cfg(test)]
-#[path = "geometry/surface_tests.rs"]
 mod surface_tests;
 #[cfg(test)]
-#[path = "geometry/tests.rs"]
 mod tests;
-#[path = "geometry/transform.rs"]
 mod transform;
-#[path = "geometry/tube.rs"]
 mod tube;
 
 use std::ops::ControlFlow;

@@ -71,46 +71,26 @@ use crate::scene::Scene;
 #[cfg(test)]
 pub use objects::MAX_NESTING;
 
-#[path = "parse/camera.rs"]
 mod camera;
-#[path = "parse/counted.rs"]
 mod counted;
-#[path = "parse/cursor.rs"]
 mod cursor;
-#[path = "parse/curves.rs"]
 mod curves;
-#[path = "parse/document.rs"]
 mod document;
-#[path = "parse/keywords.rs"]
 mod keywords;
-#[path = "parse/lexer.rs"]
 mod lexer;
-#[path = "parse/lights.rs"]
 mod lights;
-#[path = "parse/materials.rs"]
 mod materials;
-#[path = "parse/obj.rs"]
 mod obj;
-#[path = "parse/objects.rs"]
 mod objects;
-#[path = "parse/patches.rs"]
 mod patches;
-#[path = "parse/render.rs"]
 mod render;
-#[path = "parse/resources.rs"]
 mod resources;
-#[path = "parse/shapes.rs"]
 mod shapes;
-#[path = "parse/suggest.rs"]
 mod suggest;
-#[path = "parse/surfaces.rs"]
 mod surfaces;
 #[cfg(test)]
-#[path = "parse/tests.rs"]
 mod tests;
-#[path = "parse/texture.rs"]
 mod texture;
-#[path = "parse/transform.rs"]
 mod transform;
 
 /// A malformed scene: where, and what was expected.

@@ -7,33 +7,19 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use super::{ParseError, parse_str};
 use crate::scene::{Object, Scene};
 
-#[path = "tests/errors_files.rs"]
 mod errors_files;
-#[path = "tests/errors_syntax.rs"]
 mod errors_syntax;
-#[path = "tests/errors_values.rs"]
 mod errors_values;
-#[path = "tests/format_example.rs"]
 mod format_example;
-#[path = "tests/lexing.rs"]
 mod lexing;
-#[path = "tests/limits.rs"]
 mod limits;
-#[path = "tests/nurbs.rs"]
 mod nurbs;
-#[path = "tests/objects.rs"]
 mod objects;
-#[path = "tests/patches.rs"]
 mod patches;
-#[path = "tests/robustness.rs"]
 mod robustness;
-#[path = "tests/settings.rs"]
 mod settings;
-#[path = "tests/surfaces.rs"]
 mod surfaces;
-#[path = "tests/transforms.rs"]
 mod transforms;
-#[path = "tests/warnings.rs"]
 mod warnings;
 
 /// A camera block on one line (line 1 of every test scene).
