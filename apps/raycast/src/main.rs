@@ -29,6 +29,8 @@ mod whitted;
 
 #[cfg(test)]
 mod render_tests;
+#[cfg(test)]
+mod temp_dir;
 
 #[cfg(test)]
 mod batch_tests;

@@ -722,8 +722,8 @@ fn shadows_false_keeps_area_lights_without_shadow_rays() {
 /// show the scene rather than one colour.
 #[test]
 fn the_default_command_renders_the_showcase() {
-    let dir = std::env::temp_dir().join(format!("raycast-showcase-{}", std::process::id()));
-    let out = dir.join("showcase.png");
+    let dir = crate::temp_dir::TempDir::new("showcase");
+    let out = dir.0.join("showcase.png");
     crate::cli::run([
         "-o".to_string(),
         out.display().to_string(),
@@ -734,7 +734,6 @@ fn the_default_command_renders_the_showcase() {
     assert_eq!((png.width, png.height), (640, 480));
     let distinct: std::collections::HashSet<[u8; 3]> = png.pixels().collect();
     assert!(distinct.len() > 1000, "{} colours", distinct.len());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

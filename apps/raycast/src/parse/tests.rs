@@ -1,11 +1,11 @@
 //! Tests of the scene parser: one per keyword (values land in the right
 //! fields) and one per kind of error (line, column and message).
 
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::path::Path;
 
 use super::{ParseError, parse_str};
 use crate::scene::{Object, Scene};
+pub(super) use crate::temp_dir::TempDir;
 
 mod errors_files;
 mod errors_syntax;
@@ -59,42 +59,11 @@ fn objects_of(body: &str) -> Vec<Object> {
     parse(&in_group(body)).objects
 }
 
-/// A fresh directory under the system's temporary directory, removed on drop.
-struct TempDir(PathBuf);
-
 impl TempDir {
-    /// A new empty directory, unique to this process and call.
-    fn new(name: &str) -> Self {
-        static NEXT: AtomicUsize = AtomicUsize::new(0);
-        let dir = std::env::temp_dir().join(format!(
-            "revolve-parse-{}-{name}-{}",
-            std::process::id(),
-            NEXT.fetch_add(1, Ordering::Relaxed)
-        ));
-        std::fs::create_dir_all(&dir).expect("create a temporary directory");
-        TempDir(dir)
-    }
-
-    /// Writes `contents` to `relative` (creating subdirectories); its path.
-    fn write(&self, relative: &str, contents: &[u8]) -> PathBuf {
-        let path = self.0.join(relative);
-        if let Some(parent) = path.parent() {
-            std::fs::create_dir_all(parent).expect("create a fixture directory");
-        }
-        std::fs::write(&path, contents).expect("write a fixture");
-        path
-    }
-
     /// Writes the scene `text` as `scene.txt` and parses it with
     /// [`super::parse_file`].
     fn parse_scene(&self, text: &str) -> Result<Scene, ParseError> {
         let path = self.write("scene.txt", text.as_bytes());
         super::parse_file(&path)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
