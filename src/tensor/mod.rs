@@ -17,6 +17,7 @@ mod newton_polish;
 mod nurbs_surface;
 mod patch;
 mod patch_table;
+mod projection_certificate;
 mod search;
 mod search_pieces;
 mod tessellate;

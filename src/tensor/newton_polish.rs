@@ -1,7 +1,8 @@
 //! The finish of the patch search: Newton's method on the ray's two plane
 //! distances from a box, and the test that its point is a hit.
 
-use super::patch::{Patch, PatchHit, tensor_jet};
+use super::patch::{Patch, PatchHit, first_jet, tensor_jet};
+use crate::curve::Homogeneous;
 use crate::ray::acceptance::Acceptance;
 use nalgebra::Vector3;
 
@@ -24,6 +25,8 @@ pub(super) struct Frame {
     pub(super) t_floor: f64,
     /// The ray parameter searched from.
     pub(super) t_min: f64,
+    /// Largest control-point coordinate of the surface.
+    pub(super) scale: f64,
 }
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
 /// `k`, with `cols` control points a row) from the
@@ -49,8 +52,8 @@ pub(super) fn polish(
         let mut last = None;
         for _ in 0..f.iterations.max(8) {
             let (sc, tc) = (s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5));
-            let jet = tensor_jet(&patch.net, cols, sc, tc, 1);
-            let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
+            let jet = jet(patch, cols, sc, tc);
+            let [h, hs, ht] = jet;
             let x = h.wp / h.w;
             let xs = (hs.wp - x * hs.w) / h.w;
             let xt = (ht.wp - x * ht.w) / h.w;
@@ -77,29 +80,52 @@ pub(super) fn polish(
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
         let jet = match last {
             Some((sc, tc, jet)) if (sc, tc) == (s, t) => jet,
-            _ => tensor_jet(&patch.net, cols, s, t, 1),
+            _ => jet(patch, cols, s, t),
         };
-        let (h, hs, ht) = (jet[0][0], jet[1][0], jet[0][1]);
-        let x = h.wp / h.w;
-        let r = x - f.o;
-        let along = f.dh.dot(&r);
-        let off = (r - f.dh * along).norm();
-        // The point is uncertain by `accept` off the surface, so its ray
-        // parameter by `accept/(|d|·cos)` for the angle of incidence: a
-        // root that close to `t_min` is the ray's own start (a secondary
-        // ray's origin on the surface), however grazing.
-        let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
-        let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
-        let own = along / f.dn - f.t_min
-            <= f.acceptance.distance / (f.dn * if cos.is_nan() { 1.0 } else { cos });
-        if f.acceptance.accepts(off) && !own {
-            return Some(PatchHit {
-                patch: k,
-                t: along / f.dn,
-                u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
-                v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
-            });
+        if let Some(hit) = accept(patch, k, f, s, t, &jet) {
+            return Some(hit);
         }
     }
     None
+}
+
+/// The hit at `(s, t)` of `patch` (number `k`), from the jet there, if the
+/// surface point is within the acceptance of the ray and is not the ray's
+/// own origin.
+pub(super) fn accept(
+    patch: &Patch,
+    k: usize,
+    f: &Frame,
+    s: f64,
+    t: f64,
+    &[h, hs, ht]: &[Homogeneous<3>; 3],
+) -> Option<PatchHit> {
+    let x = h.wp / h.w;
+    let r = x - f.o;
+    let along = f.dh.dot(&r);
+    let off = (r - f.dh * along).norm();
+    // The point is uncertain by `accept` off the surface, so its ray
+    // parameter by `accept/(|d|·cos)` for the angle of incidence: a
+    // root that close to `t_min` is the ray's own start (a secondary
+    // ray's origin on the surface), however grazing.
+    let normal = ((hs.wp - x * hs.w) / h.w).cross(&((ht.wp - x * ht.w) / h.w));
+    let cos = (f.dh.dot(&normal).abs() / normal.norm()).clamp(1e-6, 1.0);
+    let own = along / f.dn - f.t_min
+        <= f.acceptance.distance / (f.dn * if cos.is_nan() { 1.0 } else { cos });
+    (f.acceptance.accepts(off) && !own).then(|| PatchHit {
+        patch: k,
+        t: along / f.dn,
+        u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
+        v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+    })
+}
+
+/// `(A, ∂A/∂s, ∂A/∂t)` of `patch` at `(s, t)`: by the Bernstein bases, or
+/// by de Casteljau at degrees they do not take.
+#[inline]
+pub(super) fn jet(patch: &Patch, cols: usize, s: f64, t: f64) -> [Homogeneous<3>; 3] {
+    first_jet(&patch.net, cols, s, t).unwrap_or_else(|| {
+        let jet = tensor_jet(&patch.net, cols, s, t, 1);
+        [jet[0][0], jet[1][0], jet[0][1]]
+    })
 }

@@ -47,6 +47,7 @@ use super::clip::{CLIP_ENOUGH, clip, restrict_lines};
 use super::krawczyk::{TRY_UNIQUE, unique_root};
 use super::newton_polish::{Frame, SLACK, polish};
 use super::patch::{Patch, PatchHit};
+use super::projection_certificate::{ProjectionCertificate, Settled};
 use crate::ray::acceptance::Acceptance;
 use crate::ray::bvh::{BoxRay, Bvh};
 use crate::{Ray, Tolerance};
@@ -82,6 +83,8 @@ pub(crate) struct PatchSet<'a> {
     pub(crate) degrees: (usize, usize),
     pub(crate) patches: &'a [Patch],
     pub(crate) tree: &'a Bvh,
+    /// Each patch's projection certificate, if it has one.
+    pub(crate) certificates: &'a [Option<ProjectionCertificate>],
     /// Largest control-point coordinate: the scale of the tolerance.
     pub(crate) scale: f64,
 }
@@ -134,6 +137,7 @@ pub(crate) fn intersect(
         iterations: tol.max_iterations,
         t_floor,
         t_min,
+        scale,
     };
     let mut on_stack = [[0.0_f64; 4]; 3 * NET_ON_STACK];
     let mut on_heap = Vec::new();
@@ -168,6 +172,13 @@ fn search_patch(
     let (p, q) = set.degrees;
     let n = (p + 1) * (q + 1);
     let patch = &set.patches[k];
+    if let Some(certificate) = set.certificates.get(k).and_then(Option::as_ref) {
+        match certificate.settle(patch, k, q + 1, frame, t_best) {
+            Settled::Hit(hit) => return Some(hit),
+            Settled::Nothing => return None,
+            Settled::Unknown => {}
+        }
+    }
     let dn = frame.dn;
     let t_floor = frame.t_floor;
     let mut nearest = Nearest {

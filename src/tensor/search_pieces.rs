@@ -22,6 +22,7 @@
 
 use super::patch::Patch;
 use super::patch::rounding_pad;
+use super::projection_certificate::ProjectionCertificate;
 use super::search::PatchSet;
 use crate::Aabb;
 use crate::bernstein::subdivide;
@@ -30,12 +31,12 @@ use crate::ray::bvh::Bvh;
 
 /// The most times a patch is cut in each direction (up to `4^MAX_CUTS`
 /// pieces per patch).
-pub(crate) const MAX_CUTS: usize = 2;
+pub(crate) const MAX_CUTS: usize = 3;
 
 /// A piece is flat when no control point lies farther than this fraction
 /// of the piece's box diagonal from the bilinear interpolation of its four
 /// corners.
-pub(crate) const FLATNESS: f64 = 0.02;
+pub(crate) const FLATNESS: f64 = 0.005;
 
 /// The patches of a surface cut into pieces for the ray search, with the
 /// hierarchy over the pieces.
@@ -47,6 +48,8 @@ pub(crate) struct SearchPieces {
     /// The index of the patch each piece was cut from.
     owners: Vec<u32>,
     tree: Bvh,
+    /// Each piece's projection certificate (polynomial pieces).
+    certificates: Vec<Option<ProjectionCertificate>>,
     /// Largest control-point coordinate: the scale of the tolerance.
     scale: f64,
 }
@@ -80,9 +83,14 @@ impl SearchPieces {
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
         // One piece a leaf; the pieces stored in the hierarchy's order.
         let (tree, order) = Bvh::build(&boxes, 1);
+        let pieces: Vec<Patch> = order.iter().map(|&k| pieces[k].clone()).collect();
         SearchPieces {
             degrees,
-            pieces: order.iter().map(|&k| pieces[k].clone()).collect(),
+            certificates: pieces
+                .iter()
+                .map(|piece| ProjectionCertificate::new(piece, degrees))
+                .collect(),
+            pieces,
             owners: order.iter().map(|&k| owners[k]).collect(),
             tree,
             scale,
@@ -95,6 +103,7 @@ impl SearchPieces {
             degrees: self.degrees,
             patches: &self.pieces,
             tree: &self.tree,
+            certificates: &self.certificates,
             scale: self.scale,
         }
     }
@@ -284,7 +293,15 @@ mod tests {
                 }
             }
         }
-        assert_eq!(shared, 2 * 4 * 3, "every inner edge of the 4 × 4 pieces");
+        // 2^depth pieces a side, so 2^depth − 1 inner edges between rows
+        // (and columns) of them.
+        let side = 1 << pieces.depth();
+        assert!(side > 1, "the wavy patch is cut");
+        assert_eq!(
+            shared,
+            2 * side * (side - 1),
+            "every inner edge of the pieces"
+        );
     }
 
     #[test]

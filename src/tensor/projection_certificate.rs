@@ -1,0 +1,298 @@
+//! A search piece settled by Newton's method alone, when the ray sees it as
+//! one sheet: the certificate that a polynomial piece's projection along the
+//! ray is one-to-one, and the bound that places the one root Newton finds.
+//!
+//! Let `G(x) = (e₁·(S(x) − o), e₂·(S(x) − o))` be the ray's two plane
+//! distances on a piece, `x = (s, t)`, over a widened domain
+//! `D = [−W, 1 + W]²` of the piece's parameters. For `x, y ∈ D` the mean
+//! value theorem gives `G(y) − G(x) = J̄·(y − x)`, `J̄ = [P·m_s, P·m_t]`,
+//! where `P` projects along the ray and `m_s`, `m_t` are averages of
+//! `∂S/∂s`, `∂S/∂t` over the segment, so lie in the boxes `B_s`, `B_t`
+//! that hold those derivatives on `D` (the hulls of the derivative nets).
+//! `det J̄ = (m_s × m_t)·d̂`, and `m_s × m_t` lies in the interval cross
+//! product `N = B_s × B_t`, built once per piece. So when `N·d̂` (an
+//! interval) excludes zero:
+//!
+//! - `G` is one-to-one on `D`: the line meets the piece's widening at most
+//!   once, whatever the curvature;
+//! - every root `y ∈ D` lies within `|J̄⁻¹·G(x)|` of any `x ∈ D`, which is
+//!   at most `|adj J̄|·|G(x)| / min|det J̄|`, bounded from the boxes.
+//!
+//! Newton's method from the piece's centre then ends at a point `x*` with a
+//! residual near rounding, and the root (if any in `D`) is within a box of
+//! tiny radius around `x*`. If that box lies inside the piece, `x*` is the
+//! piece's one root (tested for acceptance like every hit); if it lies
+//! outside the piece, the piece holds no root. Anything else (the test
+//! fails, as for rays grazing the piece or pieces at a collapsed edge;
+//! Newton leaves `D` or stalls; the box straddles the piece's side) is left
+//! to the clipping search. Only polynomial pieces get a certificate (the
+//! derivative hull of a rational piece is not its control net's).
+//!
+//! The boxes are kept in a frame of the piece (two tangents and the
+//! normal at its centre), where they are tight, and widened for the
+//! rounding of their construction.
+
+use super::newton_polish::{Frame, accept, jet};
+use super::patch::{Patch, PatchHit, polynomial_jet};
+use crate::bernstein::subdivide;
+use crate::curve::Homogeneous;
+use nalgebra::Vector3;
+
+/// How far the certified domain reaches past the piece on each side, in
+/// the piece's parameters: Newton may converge there on a ray that passes
+/// the piece by, which then proves the piece holds no root.
+const WIDEN: f64 = 0.125;
+
+/// Newton steps before the piece is left to the clipping search.
+const STEPS: usize = 12;
+
+/// What Newton's method under the certificate made of a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Settled {
+    /// The piece's one root, accepted as a hit.
+    Hit(PatchHit),
+    /// The piece holds no hit the ray could take.
+    Nothing,
+    /// Not settled: the clipping search decides.
+    Unknown,
+}
+
+/// The projection certificate of one polynomial piece.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ProjectionCertificate {
+    /// The unit normal at the piece's centre: the axis of the cone.
+    normal: Vector3<f64>,
+    /// The least component along `normal` of the products `h_s × h_t` of
+    /// the derivative nets' points (positive, or there is no certificate).
+    along: f64,
+    /// The largest part of those products across `normal`.
+    across: f64,
+    /// The largest `|∂S/∂s|` and `|∂S/∂t|` over the widened domain (the
+    /// largest derivative net point).
+    largest: (f64, f64),
+    /// `S`, `∂S/∂s` and `∂S/∂t` at the centre, where Newton's method starts.
+    centre: [Vector3<f64>; 3],
+    /// The box of the piece's own net in the frame (tangent, cotangent,
+    /// normal): rows of the frame and each axis's range.
+    frame: [Vector3<f64>; 2],
+    ranges: [(f64, f64); 3],
+}
+
+impl ProjectionCertificate {
+    /// The certificate of `piece` (degrees `(p, q)`), or `None` for a
+    /// rational piece, one whose centre has no tangent plane, one whose
+    /// products leave the cone's half-space, or one whose numbers are not
+    /// finite.
+    pub(crate) fn new(piece: &Patch, (p, q): (usize, usize)) -> Option<Self> {
+        if p == 0 || q == 0 || piece.net.iter().any(|h| h.w != 1.0) {
+            return None;
+        }
+        let cols = q + 1;
+        let centre = jet(piece, cols, 0.5, 0.5).map(|h| h.wp);
+        let normal = centre[1].cross(&centre[2]).try_normalize(0.0)?;
+        let tangent = (centre[1] - normal * normal.dot(&centre[1])).try_normalize(0.0)?;
+        let cotangent = normal.cross(&tangent);
+        let mut ranges = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+        let mut size = 0.0_f64;
+        for h in &piece.net {
+            for (r, axis) in ranges.iter_mut().zip([tangent, cotangent, normal]) {
+                let x = axis.dot(&h.wp);
+                *r = (r.0.min(x), r.1.max(x));
+            }
+            size = size.max(h.wp.amax());
+        }
+        // The projections' rounding.
+        let ranges = ranges.map(|(lo, hi)| (lo - 1e-14 * size, hi + 1e-14 * size));
+        // The derivative nets over the widened domain, in the piece's own
+        // parameters (the widened domain is `1 + 2W` times as long).
+        let net = widened(piece, (p, q));
+        let at = |i: usize, j: usize| net[i * cols + j];
+        let per_s = p as f64 / (1.0 + 2.0 * WIDEN);
+        let per_t = q as f64 / (1.0 + 2.0 * WIDEN);
+        let mut hs = Vec::with_capacity(p * cols);
+        let mut ht = Vec::with_capacity((p + 1) * q);
+        for i in 0..=p {
+            for j in 0..=q {
+                if i < p {
+                    hs.push((at(i + 1, j) - at(i, j)) * per_s);
+                }
+                if j < q {
+                    ht.push((at(i, j + 1) - at(i, j)) * per_t);
+                }
+            }
+        }
+        let longest = |h: &[Vector3<f64>]| h.iter().fold(0.0_f64, |m, x| m.max(x.norm()));
+        let (long_s, long_t) = (longest(&hs), longest(&ht));
+        // The cone of the products: their least component along the
+        // normal and their largest part across it.
+        let mut along = f64::INFINITY;
+        let mut across = 0.0_f64;
+        for a in &hs {
+            for b in &ht {
+                let c = a.cross(b);
+                let n = normal.dot(&c);
+                along = along.min(n);
+                across = across.max((c - normal * n).norm());
+            }
+        }
+        // Rounding of the widened nets (extrapolating de Casteljau), of the
+        // differences and of the products: generous, relative to their size.
+        let magnitude = net.iter().fold(0.0_f64, |m, x| m.max(x.amax()));
+        let pad = 1e-11 * magnitude * per_s.max(per_t);
+        // A product a × b moves by |δa||b| + |a||δb| + |δa||δb| for errors
+        // δ ≤ pad in its factors, and by its own rounding.
+        let fuzz = 2.0 * pad * (long_s + long_t + pad) + 1e-12 * long_s * long_t;
+        let certificate = ProjectionCertificate {
+            normal,
+            along: along - fuzz,
+            across: across + fuzz,
+            largest: (long_s + pad, long_t + pad),
+            centre,
+            frame: [tangent, cotangent],
+            ranges,
+        };
+        let finite = certificate.across.is_finite()
+            && certificate.largest.0.is_finite()
+            && certificate.largest.1.is_finite()
+            && centre.iter().all(|x| x.iter().all(|c| c.is_finite()));
+        (finite && certificate.along > 0.0).then_some(certificate)
+    }
+
+    /// Settles `piece` (number `k`, `cols` control points a row) for the
+    /// ray of `f`, hits in `(f.t_floor, t_best)`: see the module docs.
+    pub(super) fn settle(
+        &self,
+        piece: &Patch,
+        k: usize,
+        cols: usize,
+        f: &Frame,
+        t_best: f64,
+    ) -> Settled {
+        // |det J̄| ≥ along·|d_n| − across·|d_⊥|: the products' hull, which
+        // holds m_s × m_t, lies in the cone; less the rounding of this.
+        let d_n = self.normal.dot(&f.dh);
+        let d_across = self.normal.cross(&f.dh).norm();
+        let least_det =
+            self.along * d_n.abs() - self.across * d_across - 1e-12 * (self.along + self.across);
+        // The ray against the piece's box in its frame: a miss is no root.
+        let pad = f.acceptance.distance;
+        let (mut enter, mut exit) = (f.t_floor * f.dn - pad, t_best * f.dn + pad);
+        for (axis, range) in [self.frame[0], self.frame[1], self.normal]
+            .iter()
+            .zip(&self.ranges)
+        {
+            let (o, d) = (axis.dot(&f.o), axis.dot(&f.dh));
+            let (lo, hi) = (range.0 - pad - o, range.1 + pad - o);
+            if d == 0.0 {
+                // Parallel to the side: inside the slab or a miss.
+                if lo > 0.0 || hi < 0.0 {
+                    return Settled::Nothing;
+                }
+                continue;
+            }
+            let (a, b) = (lo / d, hi / d);
+            enter = enter.max(a.min(b));
+            exit = exit.min(a.max(b));
+        }
+        if enter > exit {
+            return Settled::Nothing;
+        }
+        if !(least_det > 0.0) {
+            return Settled::Unknown;
+        }
+        // Newton's method from the centre, within the widened domain.
+        let (mut s, mut t) = (0.5, 0.5);
+        let [mut x, mut xs, mut xt] = self.centre;
+        let mut converged = false;
+        let (mut fa, mut fb) = (f64::INFINITY, f64::INFINITY);
+        for _ in 0..STEPS {
+            let r = x - f.o;
+            (fa, fb) = (f.e1.dot(&r), f.e2.dot(&r));
+            if fa * fa + fb * fb <= f.target * f.target {
+                converged = true;
+                break;
+            }
+            let (j00, j01, j10, j11) = (f.e1.dot(&xs), f.e1.dot(&xt), f.e2.dot(&xs), f.e2.dot(&xt));
+            let det = j00 * j11 - j01 * j10;
+            if det == 0.0 || !det.is_finite() {
+                return Settled::Unknown;
+            }
+            let step_s = (fa * j11 - fb * j01) / det;
+            let step_t = (fb * j00 - fa * j10) / det;
+            s -= step_s;
+            t -= step_t;
+            let inside = (-WIDEN..=1.0 + WIDEN).contains(&s) && (-WIDEN..=1.0 + WIDEN).contains(&t);
+            if !inside {
+                return Settled::Unknown;
+            }
+            let Some(at) = polynomial_jet(&piece.net, cols, s, t) else {
+                return Settled::Unknown;
+            };
+            [x, xs, xt] = at;
+            if step_s.abs() <= 1e-15 && step_t.abs() <= 1e-15 {
+                let r = x - f.o;
+                (fa, fb) = (f.e1.dot(&r), f.e2.dot(&r));
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return Settled::Unknown;
+        }
+        // Where the root can be: |y − x*| ≤ |adj J̄|·|G(x*)| / min|det J̄|,
+        // with G's rounding (evaluation and the plane distances).
+        let noise = 64.0 * f64::EPSILON * (f.o.amax() + f.scale);
+        let g = (fa.abs() + fb.abs() + 2.0 * noise) / least_det * (1.0 + 1e-9);
+        let (reach_s, reach_t) = (self.largest.1 * g, self.largest.0 * g);
+        if !(reach_s.is_finite() && reach_t.is_finite()) {
+            return Settled::Unknown;
+        }
+        let within = |x: f64, r: f64| x - r >= 0.0 && x + r <= 1.0;
+        let apart = |x: f64, r: f64| x + r < 0.0 || x - r > 1.0;
+        if apart(s, reach_s) || apart(t, reach_t) {
+            return Settled::Nothing;
+        }
+        if !(within(s, reach_s) && within(t, reach_t)) {
+            return Settled::Unknown;
+        }
+        let at_root = [
+            Homogeneous { wp: x, w: 1.0 },
+            Homogeneous { wp: xs, w: 0.0 },
+            Homogeneous { wp: xt, w: 0.0 },
+        ];
+        match accept(piece, k, f, s, t, &at_root) {
+            Some(hit) if hit.t > f.t_floor && hit.t < t_best => Settled::Hit(hit),
+            _ => Settled::Nothing,
+        }
+    }
+}
+
+/// The points of `piece`'s net (unit weights) reparametrised to the widened
+/// domain `[−W, 1 + W]²`: each row and column restricted by two de
+/// Casteljau steps at parameters outside `[0, 1]` (extrapolation).
+fn widened(piece: &Patch, (p, q): (usize, usize)) -> Vec<Vector3<f64>> {
+    let cols = q + 1;
+    let mut net: Vec<Homogeneous<3>> = piece.net.clone();
+    let zero = Homogeneous::zero();
+    let widen_line = |line: &mut [Homogeneous<3>]| {
+        let n = line.len();
+        let (mut left, mut right) = (vec![zero; n], vec![zero; n]);
+        // [0, 1 + W], then its part from −W: at −W / (1 + W).
+        subdivide(line, 1.0 + WIDEN, &mut left, &mut right);
+        subdivide(&left, -WIDEN / (1.0 + WIDEN), &mut right, line);
+    };
+    let mut line = vec![zero; p + 1];
+    for j in 0..cols {
+        for i in 0..=p {
+            line[i] = net[i * cols + j];
+        }
+        widen_line(&mut line);
+        for i in 0..=p {
+            net[i * cols + j] = line[i];
+        }
+    }
+    for i in 0..=p {
+        widen_line(&mut net[i * cols..(i + 1) * cols]);
+    }
+    net.iter().map(|h| h.wp).collect()
+}
