@@ -4,6 +4,7 @@
 use super::patch::{Patch, PatchHit, first_jet, tensor_jet};
 use crate::curve::Homogeneous;
 use crate::ray::acceptance::Acceptance;
+use crate::{Ray, Tolerance};
 use nalgebra::Vector3;
 
 /// How far outside its patch (in the patch's parameters) Newton may land and
@@ -28,6 +29,52 @@ pub(super) struct Frame {
     /// Largest control-point coordinate of the surface.
     pub(super) scale: f64,
 }
+impl Frame {
+    /// The frame of `ray` searched from `t_min` on a surface of largest
+    /// control-point coordinate `scale`, at the tolerance `tol`; `None`
+    /// for a ray whose origin or direction is not finite or whose
+    /// direction is zero.
+    pub(super) fn new(ray: &Ray, t_min: f64, scale: f64, tol: &Tolerance) -> Option<Frame> {
+        let tol = tol.clamped();
+        let (o, d) = (ray.origin.coords, ray.dir);
+        let m = d.amax();
+        let usable = m > 0.0 && m.is_finite() && o.iter().all(|c| c.is_finite());
+        if !usable {
+            return None;
+        }
+        let dn = m * (d / m).norm();
+        let dh = d / dn;
+        // Two unit normals of planes through the ray.
+        let helper = if dh.x.abs() <= dh.y.abs() && dh.x.abs() <= dh.z.abs() {
+            Vector3::x()
+        } else if dh.y.abs() <= dh.z.abs() {
+            Vector3::y()
+        } else {
+            Vector3::z()
+        };
+        let e1 = dh.cross(&helper).normalize();
+        let e2 = dh.cross(&e1);
+        let scale = scale.max(f64::MIN_POSITIVE);
+        let acceptance = Acceptance::certified(&tol, scale, &o);
+        Some(Frame {
+            o,
+            dn,
+            e1,
+            e2,
+            dh,
+            acceptance,
+            // Every hit is polished to full precision, whatever the tolerance.
+            target: Tolerance::default().relative * scale,
+            iterations: tol.max_iterations,
+            // Hits within the position uncertainty of the origin are the
+            // origin's.
+            t_floor: acceptance.t_floor(t_min, dn),
+            t_min,
+            scale,
+        })
+    }
+}
+
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
 /// `k`, with `cols` control points a row) from the
 /// centre of the box `bs × bt` (then its corners); the hit if a start converges to a

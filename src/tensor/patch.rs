@@ -177,134 +177,60 @@ impl PatchHit {
 /// The most control points per side [`first_jet`] takes (degree 7).
 const JET_SIDE: usize = 8;
 
-/// The Bernstein basis of degree `n < JET_SIDE` at `t` and its derivative:
-/// `Bⱼⁿ(t)` and `n·(Bⱼ₋₁ⁿ⁻¹(t) − Bⱼⁿ⁻¹(t))`, built up by the recurrence
-/// `Bⱼᵏ = (1 − t)·Bⱼᵏ⁻¹ + t·Bⱼ₋₁ᵏ⁻¹`.
+/// The Bernstein bases of degrees `n < JET_SIDE` and `n − 1` at `t`:
+/// `Bⱼⁿ(t)` and `Bⱼⁿ⁻¹(t)` (the second empty for `n = 0`), by the
+/// recurrence `Bⱼᵏ = (1 − t)·Bⱼᵏ⁻¹ + t·Bⱼ₋₁ᵏ⁻¹`.
 #[inline(always)]
-fn basis(n: usize, t: f64) -> ([f64; JET_SIDE], [f64; JET_SIDE]) {
+fn bases(n: usize, t: f64) -> ([f64; JET_SIDE], [f64; JET_SIDE]) {
     let mut b = [0.0; JET_SIDE];
-    let mut d = [0.0; JET_SIDE];
     b[0] = 1.0;
     let u = 1.0 - t;
-    for k in 1..n {
+    let mut lower = b;
+    for k in 1..=n {
+        lower = b;
         for j in (1..=k).rev() {
             b[j] = u * b[j] + t * b[j - 1];
         }
         b[0] *= u;
     }
-    if n > 0 {
-        // b holds degree n − 1: the derivative first, then one more step.
-        let nf = n as f64;
-        d[0] = -nf * b[0];
-        for j in 1..n {
-            d[j] = nf * (b[j - 1] - b[j]);
-        }
-        d[n] = nf * b[n - 1];
-        for j in (1..=n).rev() {
-            b[j] = u * b[j] + t * b[j - 1];
-        }
-        b[0] *= u;
-    }
-    (b, d)
+    (b, lower)
 }
 
 /// The homogeneous point and first partials `(A, ∂A/∂s, ∂A/∂t)` (with
-/// their weights) at `(s, t)` of the net `net` of `rows × cols` points, as
-/// sums over the Bernstein bases (degrees below [`JET_SIDE`]; `None`
-/// beyond). Any `(s, t)` is taken (outside `[0, 1]²` the polynomial is
-/// extended); a few ulps from de Casteljau's [`tensor_jet`] at low degree.
+/// their weights) at `(s, t)` of the net `net` of `rows × cols` points,
+/// degrees below [`JET_SIDE`] (`None` beyond): `A = Σᵢ Bᵢ(s)·Rᵢ` over the
+/// rows' values `Rᵢ = Σⱼ Bⱼ(t)·Pᵢⱼ`, `∂A/∂s = p·Σᵢ Bᵢᵖ⁻¹(s)·(Rᵢ₊₁ − Rᵢ)`
+/// and `∂A/∂t = q·Σᵢ Bᵢ(s)·Σⱼ Bⱼ^{q−1}(t)·(Pᵢⱼ₊₁ − Pᵢⱼ)`. The derivatives are
+/// sums of differences, so they vanish exactly where the points they
+/// difference coincide (a collapsed edge), as de Casteljau's do. Any
+/// `(s, t)` is taken (outside `[0, 1]²` the polynomial is extended).
 pub(crate) fn first_jet(
     net: &[Homogeneous<3>],
     cols: usize,
     s: f64,
     t: f64,
 ) -> Option<[Homogeneous<3>; 3]> {
-    match (net.len(), cols) {
-        (16, 4) => Some(homogeneous_jet_of::<4, 4>(net, s, t)),
-        (9, 3) => Some(homogeneous_jet_of::<3, 3>(net, s, t)),
-        (4, 2) => Some(homogeneous_jet_of::<2, 2>(net, s, t)),
+    let to_array = |h: &Homogeneous<3>| [h.wp.x, h.wp.y, h.wp.z, h.w];
+    let jet = match (net.len(), cols) {
+        (16, 4) => sum_jet::<4, 4, 4>(net, s, t, to_array),
+        (9, 3) => sum_jet::<3, 3, 4>(net, s, t, to_array),
+        (4, 2) => sum_jet::<2, 2, 4>(net, s, t, to_array),
         _ => {
             let rows = net.len() / cols;
-            if rows == 0 || rows > JET_SIDE || cols > JET_SIDE {
+            if rows == 0 || rows > JET_SIDE || cols > JET_SIDE || rows * cols != net.len() {
                 return None;
             }
-            Some(sum_jet(net, rows, cols, s, t))
+            sum_jet_sized::<4>(net, rows, cols, s, t, to_array)
         }
-    }
-}
-
-/// [`first_jet`] for a net of `R × C` points, unrolled.
-#[inline(always)]
-fn homogeneous_jet_of<const R: usize, const C: usize>(
-    net: &[Homogeneous<3>],
-    s: f64,
-    t: f64,
-) -> [Homogeneous<3>; 3] {
-    sum_jet(net, R, C, s, t)
-}
-
-/// The sums of [`first_jet`] over a net of `rows × cols ≤ JET_SIDE²`
-/// points.
-#[inline(always)]
-fn sum_jet(
-    net: &[Homogeneous<3>],
-    rows: usize,
-    cols: usize,
-    s: f64,
-    t: f64,
-) -> [Homogeneous<3>; 3] {
-    let (bs, ds) = basis(rows - 1, s);
-    let (bt, dt) = basis(cols - 1, t);
-    let mut acc = [[0.0_f64; 4]; 3];
-    for (i, row) in net.chunks_exact(cols).take(rows).enumerate() {
-        let (mut value, mut slope) = ([0.0_f64; 4], [0.0_f64; 4]);
-        for (j, h) in row.iter().enumerate() {
-            let x = [h.wp.x, h.wp.y, h.wp.z, h.w];
-            for c in 0..4 {
-                value[c] += bt[j] * x[c];
-                slope[c] += dt[j] * x[c];
-            }
-        }
-        for c in 0..4 {
-            acc[0][c] += bs[i] * value[c];
-            acc[1][c] += ds[i] * value[c];
-            acc[2][c] += bs[i] * slope[c];
-        }
-    }
-    acc.map(|a| Homogeneous {
+    };
+    Some(jet.map(|a| Homogeneous {
         wp: Vector3::new(a[0], a[1], a[2]),
         w: a[3],
-    })
+    }))
 }
 
-/// The point and first partials `(S, ∂S/∂s, ∂S/∂t)` at `(s, t)` of a
-/// polynomial net (unit weights, `R × C` points, row-major), as sums over
-/// the Bernstein bases, unrolled for its size.
-#[inline(always)]
-fn polynomial_jet_of<const R: usize, const C: usize>(
-    net: &[Homogeneous<3>],
-    s: f64,
-    t: f64,
-) -> [Vector3<f64>; 3] {
-    let (bs, ds) = basis(R - 1, s);
-    let (bt, dt) = basis(C - 1, t);
-    let mut acc = [Vector3::zeros(); 3];
-    for i in 0..R {
-        let (mut value, mut slope) = (Vector3::zeros(), Vector3::zeros());
-        for j in 0..C {
-            let x = net[i * C + j].wp;
-            value += x * bt[j];
-            slope += x * dt[j];
-        }
-        acc[0] += value * bs[i];
-        acc[1] += value * ds[i];
-        acc[2] += slope * bs[i];
-    }
-    acc
-}
-
-/// [`polynomial_jet_of`] for a net of `cols` points a row: unrolled for
-/// bicubic, biquadratic and bilinear nets, by [`first_jet`] otherwise.
+/// The point and first partials `(S, ∂S/∂s, ∂S/∂t)` of a polynomial net
+/// (unit weights): [`first_jet`] without the weights.
 #[inline]
 pub(crate) fn polynomial_jet(
     net: &[Homogeneous<3>],
@@ -312,10 +238,75 @@ pub(crate) fn polynomial_jet(
     s: f64,
     t: f64,
 ) -> Option<[Vector3<f64>; 3]> {
-    match (net.len(), cols) {
-        (16, 4) => Some(polynomial_jet_of::<4, 4>(net, s, t)),
-        (9, 3) => Some(polynomial_jet_of::<3, 3>(net, s, t)),
-        (4, 2) => Some(polynomial_jet_of::<2, 2>(net, s, t)),
-        _ => first_jet(net, cols, s, t).map(|j| j.map(|h| h.wp)),
+    let to_array = |h: &Homogeneous<3>| [h.wp.x, h.wp.y, h.wp.z];
+    let jet = match (net.len(), cols) {
+        (16, 4) => sum_jet::<4, 4, 3>(net, s, t, to_array),
+        (9, 3) => sum_jet::<3, 3, 3>(net, s, t, to_array),
+        (4, 2) => sum_jet::<2, 2, 3>(net, s, t, to_array),
+        _ => {
+            let rows = net.len() / cols;
+            if rows == 0 || rows > JET_SIDE || cols > JET_SIDE || rows * cols != net.len() {
+                return None;
+            }
+            sum_jet_sized::<3>(net, rows, cols, s, t, to_array)
+        }
+    };
+    Some(jet.map(|a| Vector3::new(a[0], a[1], a[2])))
+}
+
+/// [`sum_jet_sized`] for a net of `R × C` points, unrolled.
+#[inline(always)]
+fn sum_jet<const R: usize, const C: usize, const K: usize>(
+    net: &[Homogeneous<3>],
+    s: f64,
+    t: f64,
+    coords: impl Fn(&Homogeneous<3>) -> [f64; K],
+) -> [[f64; K]; 3] {
+    sum_jet_sized(net, R, C, s, t, coords)
+}
+
+/// The sums of [`first_jet`] over the `K` coordinates `coords` gives of
+/// each point of a net of `rows × cols ≤ JET_SIDE²` points.
+#[inline(always)]
+fn sum_jet_sized<const K: usize>(
+    net: &[Homogeneous<3>],
+    rows: usize,
+    cols: usize,
+    s: f64,
+    t: f64,
+    coords: impl Fn(&Homogeneous<3>) -> [f64; K],
+) -> [[f64; K]; 3] {
+    let (p, q) = (rows - 1, cols - 1);
+    let (bs, ls) = bases(p, s);
+    let (bt, lt) = bases(q, t);
+    let mut point = [0.0_f64; K];
+    let mut along_t = [0.0_f64; K];
+    let mut along_s = [0.0_f64; K];
+    let mut previous = [0.0_f64; K];
+    for i in 0..rows {
+        let row = &net[i * cols..(i + 1) * cols];
+        let (mut value, mut slope) = ([0.0_f64; K], [0.0_f64; K]);
+        let mut last = coords(&row[0]);
+        for c in 0..K {
+            value[c] = bt[0] * last[c];
+        }
+        for j in 1..cols {
+            let x = coords(&row[j]);
+            for c in 0..K {
+                value[c] += bt[j] * x[c];
+                slope[c] += lt[j - 1] * (x[c] - last[c]);
+            }
+            last = x;
+        }
+        for c in 0..K {
+            point[c] += bs[i] * value[c];
+            along_t[c] += bs[i] * slope[c];
+            if i > 0 {
+                along_s[c] += ls[i - 1] * (value[c] - previous[c]);
+            }
+        }
+        previous = value;
     }
+    let (pf, qf) = (p as f64, q as f64);
+    [point, along_s.map(|x| x * pf), along_t.map(|x| x * qf)]
 }

@@ -3,7 +3,7 @@
 //! normal at collapsed edges, convex-hull bounds of sub-rectangles and the
 //! ray search (its pieces built by the first ray).
 
-use super::patch::{Jet, Patch, project_jet, rounding_pad, tensor_jet};
+use super::patch::{Jet, Patch, first_jet, project_jet, rounding_pad, tensor_jet};
 use super::search::{PatchSet, intersect};
 use super::search_pieces::SearchPieces;
 use crate::bernstein::restrict;
@@ -110,7 +110,15 @@ impl PatchTable {
         let (wu, wv) = (patch.u.1 - patch.u.0, patch.v.1 - patch.v.0);
         let s = ((u - patch.u.0) / wu).clamp(0.0, 1.0);
         let t = ((v - patch.v.0) / wv).clamp(0.0, 1.0);
-        let h = tensor_jet(&patch.net, self.degrees.1 + 1, s, t, order);
+        let cols = self.degrees.1 + 1;
+        // Orders up to one by the Bernstein bases, higher by de Casteljau.
+        let h = match first_jet(&patch.net, cols, s, t).filter(|_| order <= 1) {
+            Some([h, hs, ht]) => {
+                let zero = Homogeneous::zero();
+                [[h, ht, zero], [hs, zero, zero], [zero; 3]]
+            }
+            None => tensor_jet(&patch.net, cols, s, t, order),
+        };
         let mut d = project_jet(&h, order);
         // Chain rule for s = (u − u₀)/wu, t = (v − v₀)/wv.
         for (a, row) in d.iter_mut().enumerate() {

@@ -197,7 +197,7 @@ impl ProjectionCertificate {
         if enter > exit {
             return Settled::Nothing;
         }
-        if !(least_det > 0.0) {
+        if least_det.is_nan() || least_det <= 0.0 {
             return Settled::Unknown;
         }
         // Newton's method from the centre, within the widened domain.
@@ -295,4 +295,149 @@ fn widened(piece: &Patch, (p, q): (usize, usize)) -> Vec<Vector3<f64>> {
         widen_line(&mut net[i * cols..(i + 1) * cols]);
     }
     net.iter().map(|h| h.wp).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::newton_polish::Frame;
+    use super::super::patch::Patch;
+    use super::super::search::clip_search;
+    use super::super::search_pieces::SearchPieces;
+    use super::{ProjectionCertificate, Settled};
+    use crate::curve::Homogeneous;
+    use crate::{Ray, Tolerance};
+    use nalgebra::{Point3, Vector3};
+
+    /// A bicubic height field `z = bend·(sin 3x + x·cos 2y)` on the unit
+    /// square; with `weight`, its control points get unequal weights.
+    fn wavy(bend: f64, weight: bool) -> Patch {
+        let mut net = Vec::new();
+        for i in 0..4 {
+            for j in 0..4 {
+                let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
+                let z = bend * ((3.0 * x).sin() + (2.0 * y).cos() * x);
+                let w = if weight {
+                    1.0 + 0.25 * ((i + j) % 2) as f64
+                } else {
+                    1.0
+                };
+                net.push(Homogeneous::new(&Point3::new(x, y, z), w));
+            }
+        }
+        Patch {
+            u: (0.0, 1.0),
+            v: (0.0, 1.0),
+            net,
+        }
+    }
+
+    /// A deterministic stream of numbers in `[0, 1)` (xorshift).
+    struct Stream(u64);
+
+    impl Stream {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Every verdict of the certificate agrees with Bézier clipping (a
+    /// second algorithm, run on the same piece): a hit is clipping's hit
+    /// (the same root, to rounding), "nothing" is no hit for clipping. Rays
+    /// from all sides, aimed at points on and around the patch; and the
+    /// certificate settles most of the pieces the rays hit, so the clipping
+    /// search is the exception.
+    #[test]
+    fn verdicts_agree_with_clipping_and_settle_most_hits() {
+        for bend in [0.6, 2.5] {
+            agree_with_clipping(bend);
+        }
+    }
+
+    /// The check of [`verdicts_agree_with_clipping_and_settle_most_hits`]
+    /// on the patch `wavy(bend)`.
+    fn agree_with_clipping(bend: f64) {
+        let patch = wavy(bend, false);
+        let pieces = SearchPieces::new(std::slice::from_ref(&patch), (3, 3));
+        let set = pieces.set();
+        let tol = Tolerance::default();
+        let mut buf = [[0.0; 4]; 48];
+        let mut stream = Stream(0x9e37_79b9_7f4a_7c15);
+        let (mut hits, mut settled_hits, mut unknown) = (0, 0, 0);
+        for _ in 0..3000 {
+            let aim = Point3::new(
+                1.2 * stream.next() - 0.1,
+                1.2 * stream.next() - 0.1,
+                bend * (2.0 * stream.next() - 0.5),
+            );
+            let (a, b) = (
+                std::f64::consts::TAU * stream.next(),
+                2.0 * stream.next() - 1.0,
+            );
+            let r = (1.0 - b * b).sqrt();
+            let dir = Vector3::new(r * a.cos(), r * a.sin(), b);
+            let ray = Ray::new(aim - dir * 3.0, dir);
+            let frame = Frame::new(&ray, 0.0, set.scale, &tol).unwrap();
+            for (k, piece) in set.patches.iter().enumerate() {
+                let certificate = set.certificates[k].as_ref().expect("polynomial pieces");
+                let verdict = certificate.settle(piece, k, 4, &frame, f64::INFINITY);
+                let clipped = clip_search(set, k, &frame, &mut buf, f64::INFINITY);
+                hits += usize::from(clipped.is_some());
+                match (verdict, clipped) {
+                    (Settled::Hit(a), Some(b)) => {
+                        settled_hits += 1;
+                        assert!((a.t - b.t).abs() <= 1e-12, "{ray:?} piece {k}: {a:?} {b:?}");
+                        assert!((a.u - b.u).abs() + (a.v - b.v).abs() <= 1e-9, "{a:?} {b:?}");
+                    }
+                    (Settled::Nothing, None) => {}
+                    (Settled::Unknown, _) => unknown += 1,
+                    (verdict, clipped) => {
+                        panic!("{ray:?} piece {k}: certificate {verdict:?}, clipping {clipped:?}")
+                    }
+                }
+            }
+        }
+        assert!(hits > 1000, "only {hits} hits");
+        assert!(
+            settled_hits * 10 >= hits * 8,
+            "{settled_hits} of {hits} hits settled ({unknown} pieces unknown)"
+        );
+    }
+
+    /// A ray grazing a piece (in its tangent plane) is not settled: the
+    /// projection along it is not one-to-one.
+    #[test]
+    fn a_grazing_ray_is_left_to_clipping() {
+        let patch = wavy(0.0, false);
+        let certificate = ProjectionCertificate::new(&patch, (3, 3)).unwrap();
+        let ray = Ray::new(Point3::new(-1.0, 0.5, 0.0), Vector3::new(1.0, 0.1, 0.0));
+        let frame = Frame::new(&ray, 0.0, 1.0, &Tolerance::default()).unwrap();
+        let verdict = certificate.settle(&patch, 0, 4, &frame, f64::INFINITY);
+        assert_eq!(verdict, Settled::Unknown);
+        // Tilted by a degree, it crosses the flat patch once: settled.
+        let ray = Ray::new(
+            Point3::new(-0.5, 0.5, 0.01745),
+            Vector3::new(1.0, 0.0, -0.01745),
+        );
+        let frame = Frame::new(&ray, 0.0, 1.0, &Tolerance::default()).unwrap();
+        match certificate.settle(&patch, 0, 4, &frame, f64::INFINITY) {
+            Settled::Hit(hit) => assert!((ray.at(hit.t).z).abs() < 1e-12, "{hit:?}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// Rational pieces, and pieces whose centre has no tangent plane (a
+    /// patch collapsed to a curve), get no certificate.
+    #[test]
+    fn rational_and_degenerate_pieces_have_no_certificate() {
+        assert!(ProjectionCertificate::new(&wavy(0.6, true), (3, 3)).is_none());
+        let mut line = wavy(0.0, false);
+        for h in &mut line.net {
+            h.wp.y = 0.0;
+        }
+        assert!(ProjectionCertificate::new(&line, (3, 3)).is_none());
+        assert!(ProjectionCertificate::new(&wavy(0.6, false), (3, 3)).is_some());
+    }
 }

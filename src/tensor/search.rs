@@ -48,10 +48,8 @@ use super::krawczyk::{TRY_UNIQUE, unique_root};
 use super::newton_polish::{Frame, SLACK, polish};
 use super::patch::{Patch, PatchHit};
 use super::projection_certificate::{ProjectionCertificate, Settled};
-use crate::ray::acceptance::Acceptance;
 use crate::ray::bvh::{BoxRay, Bvh};
 use crate::{Ray, Tolerance};
-use nalgebra::Vector3;
 use std::ops::ControlFlow;
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
@@ -98,47 +96,15 @@ pub(crate) fn intersect(
     t_max: f64,
     tol: &Tolerance,
 ) -> Option<PatchHit> {
-    let tol = tol.clamped();
-    let (o, d) = (ray.origin.coords, ray.dir);
-    let m = d.amax();
     // NaN-safe: false when either is NaN.
     let ordered = t_min < t_max;
-    let usable = ordered && m > 0.0 && m.is_finite() && o.iter().all(|c| c.is_finite());
-    if !usable {
+    if !ordered {
         return None;
     }
-    let dn = m * (d / m).norm();
-    let dh = d / dn;
-    // Two unit normals of planes through the ray.
-    let helper = if dh.x.abs() <= dh.y.abs() && dh.x.abs() <= dh.z.abs() {
-        Vector3::x()
-    } else if dh.y.abs() <= dh.z.abs() {
-        Vector3::y()
-    } else {
-        Vector3::z()
-    };
-    let e1 = dh.cross(&helper).normalize();
-    let e2 = dh.cross(&e1);
-    let scale = set.scale.max(f64::MIN_POSITIVE);
-    let acceptance = Acceptance::certified(&tol, scale, &o);
-    // Hits within the position uncertainty of the origin are the origin.
-    let t_floor = acceptance.t_floor(t_min, dn);
+    let frame = Frame::new(ray, t_min, set.scale, tol)?;
+    let t_floor = frame.t_floor;
     let (p, q) = set.degrees;
     let n = (p + 1) * (q + 1);
-    let frame = Frame {
-        o,
-        dn,
-        e1,
-        e2,
-        dh,
-        acceptance,
-        // Every hit is polished to full precision, whatever the tolerance.
-        target: Tolerance::default().relative * scale,
-        iterations: tol.max_iterations,
-        t_floor,
-        t_min,
-        scale,
-    };
     let mut on_stack = [[0.0_f64; 4]; 3 * NET_ON_STACK];
     let mut on_heap = Vec::new();
     let buf: &mut [[f64; 4]] = if n <= NET_ON_STACK {
@@ -161,8 +127,30 @@ pub(crate) fn intersect(
 
 /// The nearest hit on patch `k` of `set` with `frame.t_floor < t < t_best`,
 /// searched with the scratch space `buf` (`3·n` entries for `n` control
-/// points: the patch's coefficients, the box at hand's, a half box's).
+/// points: the patch's coefficients, the box at hand's, a half box's):
+/// settled by the piece's projection certificate where it can, by
+/// clipping otherwise.
 fn search_patch(
+    set: PatchSet<'_>,
+    k: usize,
+    frame: &Frame,
+    buf: &mut [[f64; 4]],
+    t_best: f64,
+) -> Option<PatchHit> {
+    let q = set.degrees.1;
+    let patch = &set.patches[k];
+    if let Some(certificate) = set.certificates.get(k).and_then(Option::as_ref) {
+        match certificate.settle(patch, k, q + 1, frame, t_best) {
+            Settled::Hit(hit) => return Some(hit),
+            Settled::Nothing => return None,
+            Settled::Unknown => {}
+        }
+    }
+    clip_search(set, k, frame, buf, t_best)
+}
+
+/// [`search_patch`] by Bézier clipping and subdivision alone.
+pub(super) fn clip_search(
     set: PatchSet<'_>,
     k: usize,
     frame: &Frame,
@@ -172,13 +160,6 @@ fn search_patch(
     let (p, q) = set.degrees;
     let n = (p + 1) * (q + 1);
     let patch = &set.patches[k];
-    if let Some(certificate) = set.certificates.get(k).and_then(Option::as_ref) {
-        match certificate.settle(patch, k, q + 1, frame, t_best) {
-            Settled::Hit(hit) => return Some(hit),
-            Settled::Nothing => return None,
-            Settled::Unknown => {}
-        }
-    }
     let dn = frame.dn;
     let t_floor = frame.t_floor;
     let mut nearest = Nearest {
