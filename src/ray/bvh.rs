@@ -75,8 +75,8 @@ impl Node {
 /// A ray prepared for box tests: origin and reciprocal direction.
 #[derive(Debug, Clone, Copy)]
 pub struct BoxRay {
-    origin: [f64; 3],
-    inv: [f64; 3],
+    pub(crate) origin: [f64; 3],
+    pub(crate) inv: [f64; 3],
 }
 
 impl BoxRay {
@@ -221,6 +221,33 @@ impl Bvh {
                 }
             }
         }
+    }
+
+    /// The two children of inner node `i` (`None` for a leaf).
+    pub(crate) fn children(&self, i: usize) -> Option<(usize, usize)> {
+        let n = &self.nodes[i];
+        (n.count == 0).then_some((i + 1, n.start as usize))
+    }
+
+    /// The first stored item and the item count of leaf `i` (`None` for an
+    /// inner node).
+    pub(crate) fn leaf_items(&self, i: usize) -> Option<(u32, u32)> {
+        let n = &self.nodes[i];
+        (n.count > 0).then_some((n.start, n.count))
+    }
+
+    /// The box of node `i`: its least and greatest corners.
+    pub(crate) fn node_box(&self, i: usize) -> ([f64; 3], [f64; 3]) {
+        (self.nodes[i].min, self.nodes[i].max)
+    }
+
+    /// Half the surface area of node `i`'s box.
+    pub(crate) fn half_area(&self, i: usize) -> f64 {
+        let (min, max) = self.node_box(i);
+        half_area(&Aabb {
+            min: Point3::from(min),
+            max: Point3::from(max),
+        })
     }
 
     /// The number of nodes.

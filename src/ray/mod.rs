@@ -9,6 +9,7 @@ pub(crate) mod acceptance;
 pub mod bvh;
 pub mod newton;
 pub(crate) mod slab;
+pub mod wide_bvh;
 
 pub use newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 

@@ -14,7 +14,7 @@ use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tole
 /// [`BezierSurface`] with its own `(u, v) ∈ [0, 1]²`.
 ///
 /// A ray does not test every patch: for the search, the patches are cut
-/// once into pieces (up to 16 each, until every piece is nearly bilinear),
+/// once into pieces (up to 64 each, until every piece is nearly bilinear),
 /// whose boxes (of their control nets, which contain them by the convex
 /// hull property) are held in a bounding-volume hierarchy, built once by
 /// the surface area heuristic; a ray visits only the boxes it enters,

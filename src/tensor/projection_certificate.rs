@@ -34,7 +34,6 @@
 
 use super::newton_polish::{Frame, accept, jet};
 use super::patch::{Patch, PatchHit, polynomial_jet};
-use crate::bernstein::subdivide;
 use crate::curve::Homogeneous;
 use nalgebra::Vector3;
 
@@ -84,7 +83,8 @@ impl ProjectionCertificate {
     /// products leave the cone's half-space, or one whose numbers are not
     /// finite.
     pub(crate) fn new(piece: &Patch, (p, q): (usize, usize)) -> Option<Self> {
-        if p == 0 || q == 0 || piece.net.iter().any(|h| h.w != 1.0) {
+        let fits = (1..SIDE).contains(&p) && (1..SIDE).contains(&q);
+        if !fits || piece.net.iter().any(|h| h.w != 1.0) {
             return None;
         }
         let cols = q + 1;
@@ -109,32 +109,55 @@ impl ProjectionCertificate {
         let at = |i: usize, j: usize| net[i * cols + j];
         let per_s = p as f64 / (1.0 + 2.0 * WIDEN);
         let per_t = q as f64 / (1.0 + 2.0 * WIDEN);
-        let mut hs = Vec::with_capacity(p * cols);
-        let mut ht = Vec::with_capacity((p + 1) * q);
+        let (mut hs, mut ht) = (
+            [Vector3::zeros(); SIDE * SIDE],
+            [Vector3::zeros(); SIDE * SIDE],
+        );
+        let (mut ns, mut nt) = (0, 0);
         for i in 0..=p {
             for j in 0..=q {
                 if i < p {
-                    hs.push((at(i + 1, j) - at(i, j)) * per_s);
+                    hs[ns] = (at(i + 1, j) - at(i, j)) * per_s;
+                    ns += 1;
                 }
                 if j < q {
-                    ht.push((at(i, j + 1) - at(i, j)) * per_t);
+                    ht[nt] = (at(i, j + 1) - at(i, j)) * per_t;
+                    nt += 1;
                 }
             }
         }
         let longest = |h: &[Vector3<f64>]| h.iter().fold(0.0_f64, |m, x| m.max(x.norm()));
-        let (long_s, long_t) = (longest(&hs), longest(&ht));
+        let (hs, ht) = (&hs[..ns], &ht[..nt]);
+        if !hs.iter().chain(ht).all(|h| h.iter().all(|c| c.is_finite())) {
+            return None;
+        }
+        let (long_s, long_t) = (longest(hs), longest(ht));
         // The cone of the products: their least component along the
         // normal and their largest part across it.
+        // Worked in the frame (tangent, cotangent, normal), where the
+        // normal part of a product is its last coordinate.
+        let in_frame = |x: &Vector3<f64>| [tangent.dot(x), cotangent.dot(x), normal.dot(x)];
+        let (mut fs, mut ft) = ([[0.0; 3]; SIDE * SIDE], [[0.0; 3]; SIDE * SIDE]);
+        for (f, h) in fs.iter_mut().zip(hs) {
+            *f = in_frame(h);
+        }
+        for (f, h) in ft.iter_mut().zip(ht) {
+            *f = in_frame(h);
+        }
         let mut along = f64::INFINITY;
         let mut across = 0.0_f64;
-        for a in &hs {
-            for b in &ht {
-                let c = a.cross(b);
-                let n = normal.dot(&c);
-                along = along.min(n);
-                across = across.max((c - normal * n).norm());
+        for a in &fs[..hs.len()] {
+            for b in &ft[..ht.len()] {
+                let cx = a[1] * b[2] - a[2] * b[1];
+                let cy = a[2] * b[0] - a[0] * b[2];
+                let cz = a[0] * b[1] - a[1] * b[0];
+                // Plain comparisons (the nets are finite, checked above).
+                let squared = cx * cx + cy * cy;
+                along = if cz < along { cz } else { along };
+                across = if squared > across { squared } else { across };
             }
         }
+        let across = across.sqrt();
         // Rounding of the widened nets (extrapolating de Casteljau), of the
         // differences and of the products: generous, relative to their size.
         let magnitude = net.iter().fold(0.0_f64, |m, x| m.max(x.amax()));
@@ -267,34 +290,56 @@ impl ProjectionCertificate {
     }
 }
 
-/// The points of `piece`'s net (unit weights) reparametrised to the widened
-/// domain `[−W, 1 + W]²`: each row and column restricted by two de
-/// Casteljau steps at parameters outside `[0, 1]` (extrapolation).
-fn widened(piece: &Patch, (p, q): (usize, usize)) -> Vec<Vector3<f64>> {
+/// Points per side of a net that gets a certificate (degree 7).
+const SIDE: usize = 8;
+
+/// A net of at most `SIDE × SIDE` points, row-major, on the stack.
+type Net = [Vector3<f64>; SIDE * SIDE];
+
+/// The points of `piece`'s net (unit weights, at most [`SIDE`] a side)
+/// reparametrised to the widened domain `[−W, 1 + W]²`: each column and
+/// then each row restricted by two de Casteljau passes at parameters
+/// outside `[0, 1]` (extrapolation): to `[0, 1 + W]`, then to its part
+/// from `−W`.
+fn widened(piece: &Patch, (p, q): (usize, usize)) -> Net {
     let cols = q + 1;
-    let mut net: Vec<Homogeneous<3>> = piece.net.clone();
-    let zero = Homogeneous::zero();
-    let widen_line = |line: &mut [Homogeneous<3>]| {
-        let n = line.len();
-        let (mut left, mut right) = (vec![zero; n], vec![zero; n]);
-        // [0, 1 + W], then its part from −W: at −W / (1 + W).
-        subdivide(line, 1.0 + WIDEN, &mut left, &mut right);
-        subdivide(&left, -WIDEN / (1.0 + WIDEN), &mut right, line);
+    let mut net: Net = [Vector3::zeros(); SIDE * SIDE];
+    for (x, h) in net.iter_mut().zip(&piece.net) {
+        *x = h.wp;
+    }
+    let widen = |line: &mut [Vector3<f64>; SIDE], n: usize| {
+        for (b, t) in [(1.0 + WIDEN, false), (-WIDEN / (1.0 + WIDEN), true)] {
+            // de Casteljau at b: the left part's points are the first of
+            // each level, the right part's the last.
+            let mut work = *line;
+            for level in 0..n {
+                if t {
+                    line[n - 1 - level] = work[n - 1 - level];
+                } else {
+                    line[level] = work[0];
+                }
+                for k in 0..n - 1 - level {
+                    work[k] = work[k] + (work[k + 1] - work[k]) * b;
+                }
+            }
+        }
     };
-    let mut line = vec![zero; p + 1];
+    let mut line = [Vector3::zeros(); SIDE];
     for j in 0..cols {
         for i in 0..=p {
             line[i] = net[i * cols + j];
         }
-        widen_line(&mut line);
+        widen(&mut line, p + 1);
         for i in 0..=p {
             net[i * cols + j] = line[i];
         }
     }
     for i in 0..=p {
-        widen_line(&mut net[i * cols..(i + 1) * cols]);
+        line[..cols].copy_from_slice(&net[i * cols..(i + 1) * cols]);
+        widen(&mut line, cols);
+        net[i * cols..(i + 1) * cols].copy_from_slice(&line[..cols]);
     }
-    net.iter().map(|h| h.wp).collect()
+    net
 }
 
 #[cfg(test)]

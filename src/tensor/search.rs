@@ -32,9 +32,14 @@
 //! one side whose image is below [`SMALL`] of the patch's (a strip along a
 //! collapsed edge, where the other parameter hardly moves the point).
 //! The patches, cut once into nearly bilinear pieces
-//! ([`SearchPieces`](super::patch_pieces::SearchPieces)), are visited
-//! nearest first through their hierarchy ([`Bvh`]) and the search
-//! stops at the best hit so far.
+//! ([`SearchPieces`](super::search_pieces::SearchPieces)), are visited
+//! nearest first through their four-wide hierarchy ([`WideBvh`]) and the
+//! search stops at the best hit so far. Most polynomial pieces a ray
+//! reaches never get to clipping: their projection certificate
+//! ([`ProjectionCertificate`]) rules them out by a box in the piece's
+//! frame, or proves that the ray meets the piece at most once and settles
+//! it by Newton's method alone; clipping is the fallback for the rest
+//! (grazing rays, collapsed edges, rational pieces).
 //!
 //! No root is discarded: a box is dropped or shrunk only where a certain
 //! sign rules a hit out, so every hit lies in a box that is proven to hold
@@ -48,7 +53,8 @@ use super::krawczyk::{TRY_UNIQUE, unique_root};
 use super::newton_polish::{Frame, SLACK, polish};
 use super::patch::{Patch, PatchHit};
 use super::projection_certificate::{ProjectionCertificate, Settled};
-use crate::ray::bvh::{BoxRay, Bvh};
+use crate::ray::bvh::BoxRay;
+use crate::ray::wide_bvh::WideBvh;
 use crate::{Ray, Tolerance};
 use std::ops::ControlFlow;
 
@@ -80,7 +86,7 @@ const NET_ON_STACK: usize = 16;
 pub(crate) struct PatchSet<'a> {
     pub(crate) degrees: (usize, usize),
     pub(crate) patches: &'a [Patch],
-    pub(crate) tree: &'a Bvh,
+    pub(crate) tree: &'a WideBvh,
     /// Each patch's projection certificate, if it has one.
     pub(crate) certificates: &'a [Option<ProjectionCertificate>],
     /// Largest control-point coordinate: the scale of the tolerance.
