@@ -9,9 +9,10 @@
 //! valgrind --tool=callgrind target/release/examples/ray_profile glass 100000
 //! ```
 //!
-//! `ray_profile [glass|vase|cylinder|sphere|torus|teapot|folded] [N] [--perpendicular] [--report] [--batch]`:
+//! `ray_profile [glass|vase|cylinder|sphere|torus|teapot|folded|bicubic] [N] [--perpendicular] [--report] [--batch]`:
 //! the shape (default glass; the sphere and the torus are rational revolutions
-//! of NURBS arcs; the teapot and the folded bicubic are models of Bézier
+//! of NURBS arcs; the teapot, the folded bicubic and the benches' gently
+//! curved bicubic are models of Bézier
 //! patches), the number of rays (default 100 000), rays perpendicular
 //! to the axis instead of in any direction, the per-ray report, and rays sent
 //! through `Intersect::intersect_batch` eight at a time instead of one by
@@ -32,17 +33,19 @@ enum Shape {
     /// The unit sphere (a half circle, two rational quarter arcs) or the
     /// torus of radii 1 and 0.25 (a full circle, four quarter arcs).
     Nurbs(Revolution<Nurbs<2>>),
-    /// Newell's teapot (32 bicubic patches) or the benches' folded bicubic
+    /// Newell's teapot (32 bicubic patches), the benches' folded bicubic or
+    /// their gently curved one
     /// patch, as a model of Bézier patches.
     Patches(BezierPatches),
 }
 
-/// The teapot or the folded patch as a model of Bézier patches.
-fn patches(teapot: bool) -> Result<Shape, String> {
-    let list = if teapot {
-        common::teapot::patches()
-    } else {
-        vec![common::tensor_shapes::folded_bicubic()]
+/// The teapot, the folded or the gently curved patch as a model of Bézier
+/// patches.
+fn patches(name: &str) -> Result<Shape, String> {
+    let list = match name {
+        "teapot" => common::teapot::patches(),
+        "folded" => vec![common::tensor_shapes::folded_bicubic()],
+        _ => vec![common::patch_shapes::gentle_bicubic()],
     };
     BezierPatches::new(list)
         .map(Shape::Patches)
@@ -72,15 +75,14 @@ fn main() -> Result<(), String> {
             "cylinder" => shape = Shape::Bezier(common::bezier(&common::CYLINDER)),
             "sphere" => shape = sphere()?,
             "torus" => shape = torus()?,
-            "teapot" => shape = patches(true)?,
-            "folded" => shape = patches(false)?,
+            "teapot" | "folded" | "bicubic" => shape = patches(arg.as_str())?,
             "--perpendicular" => perpendicular = true,
             "--report" => report = true,
             "--batch" => batch = true,
             count => {
                 n = count
                     .parse()
-                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, teapot, folded, a ray count, --perpendicular, --report or --batch"))?
+                    .map_err(|_| format!("unknown argument '{count}': expected glass, vase, cylinder, sphere, torus, teapot, folded, bicubic, a ray count, --perpendicular, --report or --batch"))?
             }
         }
     }

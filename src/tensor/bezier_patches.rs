@@ -8,13 +8,13 @@ use super::tessellate::tessellate_patches;
 use crate::bernstein::Coefficient;
 use crate::bernstein::elevate_degree;
 use crate::curve::Homogeneous;
-use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Surface, Tolerance};
+use crate::{Aabb, BezierSurface, Error, Hit, Intersect, Mesh, Ray, Tolerance};
 
 /// A model made of Bézier patches, such as Newell's teapot: each patch a
 /// [`BezierSurface`] with its own `(u, v) ∈ [0, 1]²`.
 ///
 /// A ray does not test every patch: for the search, the patches are cut
-/// once into pieces (up to 64 each, until every piece is nearly bilinear),
+/// once into pieces (up to 256 each, until every piece is nearly bilinear),
 /// whose boxes (of their control nets, which contain them by the convex
 /// hull property) are held in a bounding-volume hierarchy, built once by
 /// the surface area heuristic; a ray visits only the boxes it enters,
@@ -108,11 +108,8 @@ impl BezierPatches {
         let mut found = intersect(self.search.set(), ray, t_min, t_max, &self.tolerance)?;
         found.patch = self.search.owner(found.patch);
         let surface = &self.surfaces[found.patch];
-        let hit = found.to_hit(
-            ray,
-            surface.eval(found.u, found.v),
-            surface.normal(found.u, found.v),
-        )?;
+        let (point, normal) = surface.point_and_normal(found.u, found.v);
+        let hit = found.to_hit(ray, point, normal)?;
         Some((found.patch, hit))
     }
 

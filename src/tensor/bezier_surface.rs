@@ -133,6 +133,16 @@ impl BezierSurface {
         self.table.degrees
     }
 
+    /// `S(u, v)` and the unit normal there (as [`Surface::eval`] and
+    /// [`Surface::normal`] give them), from one evaluation.
+    pub(crate) fn point_and_normal(
+        &self,
+        u: f64,
+        v: f64,
+    ) -> (Point3<f64>, Option<Unit<Vector3<f64>>>) {
+        self.table.point_and_normal(u, v)
+    }
+
     /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
     /// (clamped into the domain), analytic.
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
@@ -203,7 +213,7 @@ impl PatchBounds for BezierSurface {
 }
 
 /// Ray intersection by Bézier clipping and subdivision of the ray's two
-/// plane distances on each Bézier patch (the patches cut once into up to 64
+/// plane distances on each Bézier patch (the patches cut once into up to 256
 /// nearly bilinear pieces, visited through a hierarchy over their boxes): a
 /// box is dropped or shrunk only where a certain sign rules a hit out; a box
 /// that Krawczyk's test proves to hold one root, or one below `2⁻¹⁴` a side,

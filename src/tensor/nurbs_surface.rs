@@ -223,7 +223,7 @@ impl PatchBounds for NurbsSurface {
 }
 
 /// Ray intersection by Bézier clipping and subdivision of the ray's two
-/// plane distances on each Bézier patch (the patches cut once into up to 64
+/// plane distances on each Bézier patch (the patches cut once into up to 256
 /// nearly bilinear pieces, visited through a hierarchy over their boxes): a
 /// box is dropped or shrunk only where a certain sign rules a hit out; a box
 /// that Krawczyk's test proves to hold one root, or one below `2⁻¹⁴` a side,

@@ -137,11 +137,20 @@ impl PatchTable {
     /// no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
-        found.to_hit(
-            ray,
-            self.eval(found.u, found.v),
-            self.normal(found.u, found.v),
-        )
+        let (point, normal) = self.point_and_normal(found.u, found.v);
+        found.to_hit(ray, point, normal)
+    }
+
+    /// `S(u, v)` and the [`normal`](Self::normal) there, from one jet.
+    pub(crate) fn point_and_normal(
+        &self,
+        u: f64,
+        v: f64,
+    ) -> (Point3<f64>, Option<Unit<Vector3<f64>>>) {
+        let (u, v) = self.clamp(u, v);
+        let first = self.jet(u, v, 1);
+        let normal = self.normal_from(u, v, first[1][0], first[0][1]);
+        (Point3::from(first[0][0]), normal)
     }
 
     /// What the ray–patch search runs over.
@@ -173,7 +182,18 @@ impl PatchTable {
     pub(crate) fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
         let (u, v) = self.clamp(u, v);
         let first = self.jet(u, v, 1);
-        let (su, sv) = (first[1][0], first[0][1]);
+        self.normal_from(u, v, first[1][0], first[0][1])
+    }
+
+    /// [`normal`](Self::normal) at `(u, v)` (in the domain) given the
+    /// partials `su`, `sv` there.
+    fn normal_from(
+        &self,
+        u: f64,
+        v: f64,
+        su: Vector3<f64>,
+        sv: Vector3<f64>,
+    ) -> Option<Unit<Vector3<f64>>> {
         let n = su.cross(&sv);
         // The typical size of a first derivative: net extent over the
         // parameter widths, times the degree.

@@ -12,7 +12,8 @@
 //! The depth is one for the whole surface: the least, up to
 //! [`MAX_CUTS`], at which every piece is flat, its control net within
 //! [`FLATNESS`] of its size from the bilinear interpolation of its
-//! corners. One depth for all keeps neighbouring pieces' common edges
+//! corners (cuts beyond the second only while the pieces stay within
+//! [`PIECE_BUDGET`]). One depth for all keeps neighbouring pieces' common edges
 //! identical: a cut at ½ gives the two halves the same middle control
 //! points, and de Casteljau at ½ gives an edge the same points whichever
 //! way it runs (`a·½ + b·½` is symmetric), so patches that share an edge's
@@ -32,14 +33,21 @@ use crate::ray::wide_bvh::WideBvh;
 
 /// The most times a patch is cut in each direction (up to `4^MAX_CUTS`
 /// pieces per patch).
-pub(crate) const MAX_CUTS: usize = 3;
+pub(crate) const MAX_CUTS: usize = 4;
+
+/// Cuts beyond the second are made only while the surface keeps at most
+/// this many pieces (the teapot's 32 patches stop at three cuts, a single
+/// patch may take four).
+pub(crate) const PIECE_BUDGET: usize = 2048;
 
 /// A piece is flat when no control point lies farther than this fraction
 /// of the piece's box diagonal from the bilinear interpolation of its four
 /// corners. Flat enough that the projection certificate
 /// ([`ProjectionCertificate`]) holds for most rays (the teapot is cut three
 /// times: 2048 pieces; at 0.02 it was cut twice, and a random ray cost a
-/// quarter more instructions with the certificates).
+/// quarter more instructions with the certificates; the folded patch of
+/// the benches is cut four times: a fourth cut took a third off its rays'
+/// instructions).
 pub(crate) const FLATNESS: f64 = 0.005;
 
 /// The patches of a surface cut into pieces for the ray search, with the
@@ -66,7 +74,11 @@ impl SearchPieces {
         let mut pieces: Vec<Patch> = patches.to_vec();
         let mut owners: Vec<u32> = (0..patches.len() as u32).collect();
         let mut depth = 0;
-        while depth < MAX_CUTS && !pieces.iter().all(|p| is_flat(p, degrees)) {
+        let affordable = |depth: usize, count: usize| depth < 2 || 4 * count <= PIECE_BUDGET;
+        while depth < MAX_CUTS
+            && affordable(depth, pieces.len())
+            && !pieces.iter().all(|p| is_flat(p, degrees))
+        {
             let mut finer = Vec::with_capacity(4 * pieces.len());
             let mut finer_owners = Vec::with_capacity(4 * pieces.len());
             for (piece, &owner) in pieces.iter().zip(&owners) {
