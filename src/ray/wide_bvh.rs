@@ -12,22 +12,30 @@
 //! ranges, so items are stored in the order [`Bvh::build`] returned.
 //!
 //! # Traversal
-//! The children a ray enters are pushed on a fixed-size stack farthest
-//! first, so the nearest is popped next; an entry whose distance is beyond
+//! The children a ray enters are pushed on a stack farthest first, so the
+//! nearest is popped next (the stack is sized by the hierarchy's depth: on
+//! the stack up to [`SHALLOW`] levels, on the heap beyond); an entry whose distance is beyond
 //! the best hit found meanwhile is skipped when popped. Leaves are reached
 //! in near-to-far order of their boxes, as in [`Bvh::traverse`], and the
 //! callback sees the same items with the same narrowing `t_max`.
 
-use super::bvh::{BoxRay, Bvh, MAX_DEPTH};
+use super::bvh::{BoxRay, Bvh};
 use std::ops::ControlFlow;
 
 /// Children per node.
 pub const WIDTH: usize = 4;
 /// A slot's count for an empty slot.
 const EMPTY: u32 = u32::MAX;
-/// Stack entries: at most `WIDTH − 1` left behind per level, plus the
-/// children of the last node.
-const STACK: usize = (WIDTH - 1) * (MAX_DEPTH + 2) + WIDTH;
+/// Stack entries a traversal needs for a hierarchy `depth` levels deep: at
+/// most `WIDTH − 1` left behind per level, plus the children of the last
+/// node.
+const fn stack_entries(depth: usize) -> usize {
+    (WIDTH - 1) * (depth + 1) + WIDTH
+}
+/// Hierarchies at most this deep are walked with a stack on the stack
+/// (zeroed per ray, so kept short); deeper ones (lopsided item sets) with
+/// one on the heap.
+const SHALLOW: usize = 16;
 
 /// One node: per slot, a child's box (`min`/`max` per coordinate, lane by
 /// lane), and either an inner node (`count == 0`, `link` its index), a
@@ -80,22 +88,28 @@ impl WideNode {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct WideBvh {
     nodes: Vec<WideNode>,
+    /// The number of node levels (0 for no nodes).
+    depth: usize,
 }
 
 impl WideBvh {
     /// The binary hierarchy `bvh` collapsed to four-wide nodes.
     pub fn new(bvh: &Bvh) -> WideBvh {
-        let mut wide = WideBvh { nodes: Vec::new() };
+        let mut wide = WideBvh {
+            nodes: Vec::new(),
+            depth: 0,
+        };
         if bvh.node_count() > 0 {
-            wide.collapse(bvh, &[0]);
+            wide.depth = wide.collapse(bvh, &[0]).1;
         }
         wide.nodes.shrink_to_fit();
         wide
     }
 
     /// Adds the wide node over the binary nodes `start` (one or two; more
-    /// are gathered here) and returns its index.
-    fn collapse(&mut self, bvh: &Bvh, start: &[usize]) -> u32 {
+    /// are gathered here) and returns its index and the levels of nodes
+    /// from it down.
+    fn collapse(&mut self, bvh: &Bvh, start: &[usize]) -> (u32, usize) {
         let mut slots: Vec<usize> = start.to_vec();
         // Open the inner slot of largest area while there is room.
         while slots.len() < WIDTH {
@@ -113,6 +127,7 @@ impl WideBvh {
         let index = self.nodes.len();
         self.nodes.push(WideNode::empty());
         let mut node = WideNode::empty();
+        let mut below = 0;
         for (k, &n) in slots.iter().enumerate() {
             let (min, max) = bvh.node_box(n);
             for axis in 0..3 {
@@ -126,13 +141,15 @@ impl WideBvh {
                 }
                 None => {
                     let (left, right) = bvh.children(n).expect("an inner node");
-                    node.link[k] = self.collapse(bvh, &[left, right]);
+                    let (child, levels) = self.collapse(bvh, &[left, right]);
+                    node.link[k] = child;
                     node.count[k] = 0;
+                    below = below.max(levels);
                 }
             }
         }
         self.nodes[index] = node;
-        index as u32
+        (index as u32, below + 1)
     }
 
     /// The number of nodes.
@@ -150,15 +167,36 @@ impl WideBvh {
         &self,
         ray: &BoxRay,
         t_min: f64,
-        mut t_max: f64,
+        t_max: f64,
         mut leaf: impl FnMut(usize, f64) -> ControlFlow<(), f64>,
     ) {
         if self.nodes.is_empty() {
             return;
         }
-        // Entries: node index × WIDTH + slot, and the slot's entry distance.
-        let mut stack_slot = [0u32; STACK];
-        let mut stack_t = [0.0f64; STACK];
+        if self.depth <= SHALLOW {
+            let mut slots = [0u32; stack_entries(SHALLOW)];
+            let mut ts = [0.0f64; stack_entries(SHALLOW)];
+            self.walk(ray, t_min, t_max, &mut leaf, &mut slots, &mut ts);
+        } else {
+            let n = stack_entries(self.depth);
+            let (mut slots, mut ts) = (vec![0u32; n], vec![0.0f64; n]);
+            self.walk(ray, t_min, t_max, &mut leaf, &mut slots, &mut ts);
+        }
+    }
+
+    /// [`traverse`](Self::traverse) with the stack `stack_slot`,
+    /// `stack_t` (entries: node index × WIDTH + slot, and the slot's entry
+    /// distance; at least `stack_entries(depth)` of them).
+    #[inline(always)]
+    fn walk(
+        &self,
+        ray: &BoxRay,
+        t_min: f64,
+        mut t_max: f64,
+        leaf: &mut impl FnMut(usize, f64) -> ControlFlow<(), f64>,
+        stack_slot: &mut [u32],
+        stack_t: &mut [f64],
+    ) {
         let mut sp = 0;
         let mut node = 0usize;
         loop {
@@ -243,14 +281,37 @@ mod tests {
             .collect()
     }
 
+    /// Boxes along the x axis at `2ᵏ`, growing with `k`: the binned build
+    /// splits off one box at a time, so the hierarchy is a deep chain.
+    fn chain(n: usize) -> Vec<Aabb> {
+        (0..n)
+            .map(|k| {
+                let c = Point3::new(2f64.powi(k as i32), 0.5, 0.5);
+                let h = Vector3::new(0.1 * 2f64.powi(k as i32), 0.4, 0.4);
+                Aabb {
+                    min: c - h,
+                    max: c + h,
+                }
+            })
+            .collect()
+    }
+
+    /// The chain of [`chain`] is deeper than a stack on the stack holds, so
+    /// its walks take the heap's.
+    #[test]
+    fn a_deep_chain_is_walked_with_a_stack_on_the_heap() {
+        let (bvh, _) = Bvh::build(&chain(120), 1);
+        assert!(WideBvh::new(&bvh).depth > super::SHALLOW);
+    }
+
     /// The wide hierarchy hands the callback the same items as the binary
     /// one it was collapsed from when the callback never narrows `t_max`;
     /// and when it narrows `t_max` to the entry of the box of every third
     /// item (a "hit"), both end with the same nearest hit.
     #[test]
     fn finds_what_the_binary_hierarchy_finds() {
-        for (n, max_leaf) in [(1, 1), (2, 1), (7, 1), (300, 1), (300, 4)] {
-            let items = boxes(n);
+        for (n, max_leaf) in [(0, 1), (1, 1), (2, 1), (7, 1), (300, 1), (300, 4), (120, 1)] {
+            let items = if n == 120 { chain(n) } else { boxes(n) };
             let (bvh, order) = Bvh::build(&items, max_leaf);
             let wide = WideBvh::new(&bvh);
             assert!(wide.node_count() <= bvh.node_count());
@@ -258,7 +319,12 @@ mod tests {
                 let (a, b) = (r as f64 * 2.399_963, (r as f64 + 0.5) / 200.0 - 1.0);
                 let c = (1.0 - b * b).sqrt();
                 let dir = Vector3::new(c * a.cos(), c * a.sin(), b);
-                let ray = Ray::new(Point3::new(5.0, 5.0, 5.0) - dir * 12.0, dir);
+                let centre = if n == 120 {
+                    Point3::new(1e3, 0.5, 0.5)
+                } else {
+                    Point3::new(5.0, 5.0, 5.0)
+                };
+                let ray = Ray::new(centre - dir * 12.0, dir);
                 let box_ray = BoxRay::new(&ray);
                 for narrowing in [false, true] {
                     let mut seen = [Vec::new(), Vec::new()];

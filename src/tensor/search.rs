@@ -109,20 +109,11 @@ pub(crate) fn intersect(
     }
     let frame = Frame::new(ray, t_min, set.scale, tol)?;
     let t_floor = frame.t_floor;
-    let (p, q) = set.degrees;
-    let n = (p + 1) * (q + 1);
-    let mut on_stack = [[0.0_f64; 4]; 3 * NET_ON_STACK];
-    let mut on_heap = Vec::new();
-    let buf: &mut [[f64; 4]] = if n <= NET_ON_STACK {
-        &mut on_stack[..3 * n]
-    } else {
-        on_heap.resize(3 * n, [0.0; 4]);
-        &mut on_heap
-    };
+    let mut scratch = Scratch::default();
     let mut best: Option<PatchHit> = None;
     set.tree
         .traverse(&BoxRay::new(ray), t_floor, t_max, |k, t_best| {
-            if let Some(hit) = search_patch(set, k, &frame, buf, t_best) {
+            if let Some(hit) = search_patch(set, k, &frame, &mut scratch, t_best) {
                 best = Some(hit);
                 return ControlFlow::Continue(hit.t);
             }
@@ -131,16 +122,38 @@ pub(crate) fn intersect(
     best
 }
 
-/// The nearest hit on patch `k` of `set` with `frame.t_floor < t < t_best`,
-/// searched with the scratch space `buf` (`3·n` entries for `n` control
-/// points: the patch's coefficients, the box at hand's, a half box's):
+/// The clipping search's scratch space for one ray, made when a piece
+/// first needs it (most rays settle every piece they reach without it):
+/// `3·n` entries for `n` control points (the patch's coefficients, the box
+/// at hand's, a half box's), on the stack up to bicubic nets.
+#[derive(Default)]
+struct Scratch {
+    on_stack: Option<[[f64; 4]; 3 * NET_ON_STACK]>,
+    on_heap: Vec<[f64; 4]>,
+}
+
+impl Scratch {
+    /// The space for nets of `n` points.
+    fn get(&mut self, n: usize) -> &mut [[f64; 4]] {
+        if n <= NET_ON_STACK {
+            &mut self.on_stack.get_or_insert([[0.0; 4]; 3 * NET_ON_STACK])[..3 * n]
+        } else {
+            if self.on_heap.len() < 3 * n {
+                self.on_heap.resize(3 * n, [0.0; 4]);
+            }
+            &mut self.on_heap[..3 * n]
+        }
+    }
+}
+
+/// The nearest hit on patch `k` of `set` with `frame.t_floor < t < t_best`:
 /// settled by the piece's projection certificate where it can, by
-/// clipping otherwise.
+/// clipping (in `scratch`) otherwise.
 fn search_patch(
     set: PatchSet<'_>,
     k: usize,
     frame: &Frame,
-    buf: &mut [[f64; 4]],
+    scratch: &mut Scratch,
     t_best: f64,
 ) -> Option<PatchHit> {
     let q = set.degrees.1;
@@ -152,7 +165,8 @@ fn search_patch(
             Settled::Unknown => {}
         }
     }
-    clip_search(set, k, frame, buf, t_best)
+    let (p, q) = set.degrees;
+    clip_search(set, k, frame, scratch.get((p + 1) * (q + 1)), t_best)
 }
 
 /// [`search_patch`] by Bézier clipping and subdivision alone.
