@@ -14,7 +14,7 @@
 //! # Traversal
 //! The children a ray enters are pushed on a stack farthest first, so the
 //! nearest is popped next (the stack is sized by the hierarchy's depth: on
-//! the stack up to [`SHALLOW`] levels, on the heap beyond); an entry whose distance is beyond
+//! the stack up to 16 levels, on the heap beyond); an entry whose distance is beyond
 //! the best hit found meanwhile is skipped when popped. Leaves are reached
 //! in near-to-far order of their boxes, as in [`Bvh::traverse`], and the
 //! callback sees the same items with the same narrowing `t_max`.
