@@ -228,10 +228,13 @@ impl ProjectionCertificate {
         let [mut x, mut xs, mut xt] = self.centre;
         let mut converged = false;
         let (mut fa, mut fb) = (f64::INFINITY, f64::INFINITY);
+        // Newton stops at the target or at the rounding of the plane
+        // distances themselves, whichever is larger.
+        let floor = f.target.max(4.0 * f64::EPSILON * (f.o.amax() + f.scale));
         for _ in 0..STEPS {
             let r = x - f.o;
             (fa, fb) = (f.e1.dot(&r), f.e2.dot(&r));
-            if fa * fa + fb * fb <= f.target * f.target {
+            if fa * fa + fb * fb <= floor * floor {
                 converged = true;
                 break;
             }
