@@ -181,6 +181,12 @@ impl ProjectionCertificate {
         (finite && certificate.along > 0.0).then_some(certificate)
     }
 
+    /// Whether the products' cone is wider than 45° about the normal
+    /// (rays more than 45° off the normal may then fail the cone test).
+    pub(crate) fn cone_is_wide(&self) -> bool {
+        self.across >= self.along
+    }
+
     /// Settles `piece` (number `k`, `cols` control points a row) for the
     /// ray of `f`, hits in `(f.t_floor, t_best)`: see the module docs.
     pub(super) fn settle(

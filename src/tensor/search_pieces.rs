@@ -13,7 +13,8 @@
 //! [`MAX_CUTS`], at which every piece is flat, its control net within
 //! [`FLATNESS`] of its size from the bilinear interpolation of its
 //! corners (cuts beyond the second only while the pieces stay within
-//! [`PIECE_BUDGET`]). One depth for all keeps neighbouring pieces' common edges
+//! [`PIECE_BUDGET`], the fourth only for pieces poorly served by their
+//! projection certificates). One depth for all keeps neighbouring pieces' common edges
 //! identical: a cut at ½ gives the two halves the same middle control
 //! points, and de Casteljau at ½ gives an edge the same points whichever
 //! way it runs (`a·½ + b·½` is symmetric), so patches that share an edge's
@@ -37,7 +38,9 @@ pub(crate) const MAX_CUTS: usize = 4;
 
 /// Cuts beyond the second are made only while the surface keeps at most
 /// this many pieces (the teapot's 32 patches stop at three cuts, a single
-/// patch may take four).
+/// patch may take four; the fourth only where a piece's projection
+/// certificate is missing or holds within 45° of its normal alone: the
+/// benches' folded patch takes it, their gentle one does not).
 pub(crate) const PIECE_BUDGET: usize = 2048;
 
 /// A piece is flat when no control point lies farther than this fraction
@@ -75,10 +78,19 @@ impl SearchPieces {
         let mut owners: Vec<u32> = (0..patches.len() as u32).collect();
         let mut depth = 0;
         let affordable = |depth: usize, count: usize| depth < 2 || 4 * count <= PIECE_BUDGET;
-        while depth < MAX_CUTS
-            && affordable(depth, pieces.len())
-            && !pieces.iter().all(|p| is_flat(p, degrees))
-        {
+        // The fourth cut only for pieces that are not flat and whose
+        // certificate settles too few directions (below).
+        let needs_cut = |depth: usize, pieces: &[Patch]| {
+            let rough = |p: &Patch| !is_flat(p, degrees);
+            if depth < 3 {
+                pieces.iter().any(rough)
+            } else {
+                pieces
+                    .iter()
+                    .any(|p| rough(p) && poorly_certified(p, degrees))
+            }
+        };
+        while depth < MAX_CUTS && affordable(depth, pieces.len()) && needs_cut(depth, &pieces) {
             let mut finer = Vec::with_capacity(4 * pieces.len());
             let mut finer_owners = Vec::with_capacity(4 * pieces.len());
             for (piece, &owner) in pieces.iter().zip(&owners) {
@@ -151,6 +163,15 @@ impl SearchPieces {
     pub(crate) fn bounds(&self) -> Aabb {
         self.bounds
     }
+}
+
+/// Whether `piece` is polynomial and its projection certificate is missing
+/// (a fold inside it, or a point without a tangent plane) or holds only for
+/// directions within 45° of its normal (its products' cone is wider than
+/// that): a piece that a fourth cut would serve.
+fn poorly_certified(piece: &Patch, degrees: (usize, usize)) -> bool {
+    let polynomial = piece.net.iter().all(|h| h.w == 1.0);
+    polynomial && ProjectionCertificate::new(piece, degrees).is_none_or(|c| c.cone_is_wide())
 }
 
 /// Whether `patch`'s projected control points lie within [`FLATNESS`] of
@@ -266,8 +287,10 @@ mod tests {
         let degrees = (3, 2);
         let patch = wavy(3, 2, 0.8);
         let pieces = SearchPieces::new(std::slice::from_ref(&patch), degrees);
-        assert_eq!(pieces.depth(), MAX_CUTS, "a strongly bent patch is cut");
-        assert_eq!(pieces.pieces().len(), 4usize.pow(MAX_CUTS as u32));
+        // Three cuts: a fourth serves projection certificates, which a
+        // rational piece does not get.
+        assert_eq!(pieces.depth(), 3, "a strongly bent rational patch is cut");
+        assert_eq!(pieces.pieces().len(), 64);
         let (du, dv) = (patch.u.1 - patch.u.0, patch.v.1 - patch.v.0);
         let mut area = 0.0;
         for (k, piece) in pieces.pieces().iter().enumerate() {
@@ -285,6 +308,34 @@ mod tests {
             (area - du * dv).abs() < 1e-15,
             "the pieces tile the rectangle"
         );
+    }
+
+    /// A polynomial bicubic height field `z = bend·sin(3x)·cos(2y)`.
+    fn height_field(bend: f64) -> Patch {
+        let mut net = Vec::new();
+        for i in 0..=3 {
+            for j in 0..=3 {
+                let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
+                let z = bend * (3.0 * x).sin() * (2.0 * y).cos();
+                net.push(Homogeneous::new(&Point3::new(x, y, z), 1.0));
+            }
+        }
+        Patch {
+            u: (0.0, 1.0),
+            v: (0.0, 1.0),
+            net,
+        }
+    }
+
+    /// The fourth cut is made for a polynomial patch whose pieces after
+    /// three are poorly served by their certificates (a steep fold), not
+    /// for a gently curved one.
+    #[test]
+    fn the_fourth_cut_serves_poorly_certified_pieces_only() {
+        let steep = SearchPieces::new(&[height_field(4.0)], (3, 3));
+        assert_eq!(steep.depth(), 4);
+        let gentle = SearchPieces::new(&[height_field(0.3)], (3, 3));
+        assert!(gentle.depth() <= 3, "{}", gentle.depth());
     }
 
     #[test]
