@@ -204,25 +204,14 @@ fn bases(n: usize, t: f64) -> ([f64; JET_SIDE], [f64; JET_SIDE]) {
 /// sums of differences, so they vanish exactly where the points they
 /// difference coincide (a collapsed edge), as de Casteljau's do. Any
 /// `(s, t)` is taken (outside `[0, 1]²` the polynomial is extended).
+#[inline]
 pub(crate) fn first_jet(
     net: &[Homogeneous<3>],
     cols: usize,
     s: f64,
     t: f64,
 ) -> Option<[Homogeneous<3>; 3]> {
-    let to_array = |h: &Homogeneous<3>| [h.wp.x, h.wp.y, h.wp.z, h.w];
-    let jet = match (net.len(), cols) {
-        (16, 4) => sum_jet::<4, 4, 4>(net, s, t, to_array),
-        (9, 3) => sum_jet::<3, 3, 4>(net, s, t, to_array),
-        (4, 2) => sum_jet::<2, 2, 4>(net, s, t, to_array),
-        _ => {
-            let rows = net.len() / cols;
-            if rows == 0 || rows > JET_SIDE || cols > JET_SIDE || rows * cols != net.len() {
-                return None;
-            }
-            sum_jet_sized::<4>(net, rows, cols, s, t, to_array)
-        }
-    };
+    let jet = jet_sums(net, cols, s, t, |h| [h.wp.x, h.wp.y, h.wp.z, h.w])?;
     Some(jet.map(|a| Homogeneous {
         wp: Vector3::new(a[0], a[1], a[2]),
         w: a[3],
@@ -238,20 +227,33 @@ pub(crate) fn polynomial_jet(
     s: f64,
     t: f64,
 ) -> Option<[Vector3<f64>; 3]> {
-    let to_array = |h: &Homogeneous<3>| [h.wp.x, h.wp.y, h.wp.z];
-    let jet = match (net.len(), cols) {
-        (16, 4) => sum_jet::<4, 4, 3>(net, s, t, to_array),
-        (9, 3) => sum_jet::<3, 3, 3>(net, s, t, to_array),
-        (4, 2) => sum_jet::<2, 2, 3>(net, s, t, to_array),
+    let jet = jet_sums(net, cols, s, t, |h| [h.wp.x, h.wp.y, h.wp.z])?;
+    Some(jet.map(|a| Vector3::new(a[0], a[1], a[2])))
+}
+
+/// The sums of [`first_jet`] over the `K` coordinates `coords` gives of
+/// each point: unrolled for bicubic, biquadratic and bilinear nets, by
+/// the sized loops up to [`JET_SIDE`] a side, `None` beyond.
+#[inline(always)]
+fn jet_sums<const K: usize>(
+    net: &[Homogeneous<3>],
+    cols: usize,
+    s: f64,
+    t: f64,
+    coords: impl Fn(&Homogeneous<3>) -> [f64; K],
+) -> Option<[[f64; K]; 3]> {
+    Some(match (net.len(), cols) {
+        (16, 4) => sum_jet::<4, 4, K>(net, s, t, coords),
+        (9, 3) => sum_jet::<3, 3, K>(net, s, t, coords),
+        (4, 2) => sum_jet::<2, 2, K>(net, s, t, coords),
         _ => {
-            let rows = net.len() / cols;
+            let rows = net.len().checked_div(cols)?;
             if rows == 0 || rows > JET_SIDE || cols > JET_SIDE || rows * cols != net.len() {
                 return None;
             }
-            sum_jet_sized::<3>(net, rows, cols, s, t, to_array)
+            sum_jet_sized::<K>(net, rows, cols, s, t, coords)
         }
-    };
-    Some(jet.map(|a| Vector3::new(a[0], a[1], a[2])))
+    })
 }
 
 /// [`sum_jet_sized`] for a net of `R × C` points, unrolled.
