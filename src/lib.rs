@@ -119,6 +119,8 @@ mod scratch;
 mod serde_impls;
 mod surface;
 pub mod tensor;
+#[cfg(test)]
+mod test_unit;
 #[cfg(feature = "testing")]
 pub mod testing;
 

@@ -1044,12 +1044,7 @@ mod tests {
     #[test]
     fn quick_roots_agrees_with_the_search() {
         let mut state = 0x2545_F491_4F6C_DD1D_u64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut unit = || crate::test_unit::unit(&mut state);
         let (mut none, mut one, mut search) = (0, 0, 0);
         for case in 0..3000 {
             // Six roots, zero to three of them in [0, 1]; a scale; for some

@@ -263,12 +263,7 @@ mod tests {
     /// stream).
     fn boxes(n: usize) -> Vec<Aabb> {
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = || crate::test_unit::unit(&mut state);
         (0..n)
             .map(|_| {
                 let c = Point3::new(next(), next(), next()) * 10.0;
@@ -327,31 +322,25 @@ mod tests {
                 let ray = Ray::new(centre - dir * 12.0, dir);
                 let box_ray = BoxRay::new(&ray);
                 for narrowing in [false, true] {
+                    // Per side: the items seen, and the last t_max returned
+                    // (the nearest "hit").
                     let mut seen = [Vec::new(), Vec::new()];
                     let mut nearest = [f64::INFINITY; 2];
-                    for (side, found) in seen.iter_mut().enumerate() {
+                    for (side, (found, last)) in seen.iter_mut().zip(&mut nearest).enumerate() {
                         let mut callback = |k: usize, t_max: f64| {
                             found.push(k);
                             let entry = items[order[k]].clip(&ray, 0.0, t_max).map(|(t, _)| t);
-                            match entry {
-                                Some(t) if narrowing && k % 3 == 0 => ControlFlow::Continue(t),
-                                _ => ControlFlow::Continue(t_max),
-                            }
-                        };
-                        let mut last = f64::INFINITY;
-                        let mut tracked = |k: usize, t_max: f64| {
-                            let flow = callback(k, t_max);
-                            if let ControlFlow::Continue(t) = flow {
-                                last = t;
-                            }
-                            flow
+                            *last = match entry {
+                                Some(t) if narrowing && k % 3 == 0 => t,
+                                _ => t_max,
+                            };
+                            ControlFlow::Continue(*last)
                         };
                         if side == 0 {
-                            bvh.traverse(&box_ray, 0.0, f64::INFINITY, &mut tracked);
+                            bvh.traverse(&box_ray, 0.0, f64::INFINITY, &mut callback);
                         } else {
-                            wide.traverse(&box_ray, 0.0, f64::INFINITY, &mut tracked);
+                            wide.traverse(&box_ray, 0.0, f64::INFINITY, &mut callback);
                         }
-                        nearest[side] = last;
                         found.sort_unstable();
                     }
                     if narrowing {

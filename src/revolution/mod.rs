@@ -28,8 +28,6 @@ mod span_search;
 mod span_table;
 mod surface;
 mod tessellate;
-#[cfg(test)]
-mod test_unit;
 mod turn_angle;
 
 pub use span_search::ExactReport;

@@ -370,7 +370,7 @@ mod tests {
     use crate::{BSpline, Curve, Tolerance};
     use nalgebra::{Point2, Point3, Vector3};
 
-    use crate::revolution::test_unit::unit;
+    use crate::test_unit::unit;
 
     /// A clamped cubic B-spline profile of `count` points at size `scale`:
     /// radii in `[0, scale]` (the ends on the axis), heights rising with

@@ -92,7 +92,7 @@ mod tests {
         }
     }
 
-    use crate::revolution::test_unit::unit;
+    use crate::test_unit::unit;
 
     #[test]
     fn agrees_with_atan2_within_two_ulps() {

@@ -243,9 +243,10 @@ fn jet_sums<const K: usize>(
     coords: impl Fn(&Homogeneous<3>) -> [f64; K],
 ) -> Option<[[f64; K]; 3]> {
     Some(match (net.len(), cols) {
-        (16, 4) => sum_jet::<4, 4, K>(net, s, t, coords),
-        (9, 3) => sum_jet::<3, 3, K>(net, s, t, coords),
-        (4, 2) => sum_jet::<2, 2, K>(net, s, t, coords),
+        // Constant sizes, so that the inlined loops are unrolled.
+        (16, 4) => sum_jet_sized(net, 4, 4, s, t, coords),
+        (9, 3) => sum_jet_sized(net, 3, 3, s, t, coords),
+        (4, 2) => sum_jet_sized(net, 2, 2, s, t, coords),
         _ => {
             let rows = net.len().checked_div(cols)?;
             if rows == 0 || rows > JET_SIDE || cols > JET_SIDE || rows * cols != net.len() {
@@ -254,17 +255,6 @@ fn jet_sums<const K: usize>(
             sum_jet_sized::<K>(net, rows, cols, s, t, coords)
         }
     })
-}
-
-/// [`sum_jet_sized`] for a net of `R × C` points, unrolled.
-#[inline(always)]
-fn sum_jet<const R: usize, const C: usize, const K: usize>(
-    net: &[Homogeneous<3>],
-    s: f64,
-    t: f64,
-    coords: impl Fn(&Homogeneous<3>) -> [f64; K],
-) -> [[f64; K]; 3] {
-    sum_jet_sized(net, R, C, s, t, coords)
 }
 
 /// The sums of [`first_jet`] over the `K` coordinates `coords` gives of

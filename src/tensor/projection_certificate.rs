@@ -109,45 +109,41 @@ impl ProjectionCertificate {
         let at = |i: usize, j: usize| net[i * cols + j];
         let per_s = p as f64 / (1.0 + 2.0 * WIDEN);
         let per_t = q as f64 / (1.0 + 2.0 * WIDEN);
-        let (mut hs, mut ht) = (
-            [Vector3::zeros(); SIDE * SIDE],
-            [Vector3::zeros(); SIDE * SIDE],
-        );
+        // The derivative nets' points, kept in the frame (tangent,
+        // cotangent, normal), where the normal part of a product is its
+        // last coordinate; and their largest lengths.
+        let in_frame = |x: &Vector3<f64>| [tangent.dot(x), cotangent.dot(x), normal.dot(x)];
+        let (mut hs, mut ht) = ([[0.0; 3]; SIDE * SIDE], [[0.0; 3]; SIDE * SIDE]);
         let (mut ns, mut nt) = (0, 0);
+        let (mut long_s, mut long_t) = (0.0_f64, 0.0_f64);
+        let mut finite = true;
         for i in 0..=p {
             for j in 0..=q {
                 if i < p {
-                    hs[ns] = (at(i + 1, j) - at(i, j)) * per_s;
+                    let h = (at(i + 1, j) - at(i, j)) * per_s;
+                    finite &= h.iter().all(|c| c.is_finite());
+                    long_s = long_s.max(h.norm());
+                    hs[ns] = in_frame(&h);
                     ns += 1;
                 }
                 if j < q {
-                    ht[nt] = (at(i, j + 1) - at(i, j)) * per_t;
+                    let h = (at(i, j + 1) - at(i, j)) * per_t;
+                    finite &= h.iter().all(|c| c.is_finite());
+                    long_t = long_t.max(h.norm());
+                    ht[nt] = in_frame(&h);
                     nt += 1;
                 }
             }
         }
-        let longest = |h: &[Vector3<f64>]| h.iter().fold(0.0_f64, |m, x| m.max(x.norm()));
-        let (hs, ht) = (&hs[..ns], &ht[..nt]);
-        if !hs.iter().chain(ht).all(|h| h.iter().all(|c| c.is_finite())) {
+        if !finite {
             return None;
         }
-        let (long_s, long_t) = (longest(hs), longest(ht));
         // The cone of the products: their least component along the
         // normal and their largest part across it.
-        // Worked in the frame (tangent, cotangent, normal), where the
-        // normal part of a product is its last coordinate.
-        let in_frame = |x: &Vector3<f64>| [tangent.dot(x), cotangent.dot(x), normal.dot(x)];
-        let (mut fs, mut ft) = ([[0.0; 3]; SIDE * SIDE], [[0.0; 3]; SIDE * SIDE]);
-        for (f, h) in fs.iter_mut().zip(hs) {
-            *f = in_frame(h);
-        }
-        for (f, h) in ft.iter_mut().zip(ht) {
-            *f = in_frame(h);
-        }
         let mut along = f64::INFINITY;
         let mut across = 0.0_f64;
-        for a in &fs[..hs.len()] {
-            for b in &ft[..ht.len()] {
+        for a in &hs[..ns] {
+            for b in &ht[..nt] {
                 let cx = a[1] * b[2] - a[2] * b[1];
                 let cy = a[2] * b[0] - a[0] * b[2];
                 let cz = a[0] * b[1] - a[1] * b[0];
@@ -197,12 +193,6 @@ impl ProjectionCertificate {
         f: &Frame,
         t_best: f64,
     ) -> Settled {
-        // |det J̄| ≥ along·|d_n| − across·|d_⊥|: the products' hull, which
-        // holds m_s × m_t, lies in the cone; less the rounding of this.
-        let d_n = self.normal.dot(&f.dh);
-        let d_across = self.normal.cross(&f.dh).norm();
-        let least_det =
-            self.along * d_n.abs() - self.across * d_across - 1e-12 * (self.along + self.across);
         // The ray against the piece's box in its frame: a miss is no root.
         let pad = f.acceptance.distance;
         let (mut enter, mut exit) = (f.t_floor * f.dn - pad, t_best * f.dn + pad);
@@ -226,6 +216,12 @@ impl ProjectionCertificate {
         if enter > exit {
             return Settled::Nothing;
         }
+        // |det J̄| ≥ along·|d_n| − across·|d_⊥|: the products' hull, which
+        // holds m_s × m_t, lies in the cone; less the rounding of this.
+        let d_n = self.normal.dot(&f.dh);
+        let d_across = self.normal.cross(&f.dh).norm();
+        let least_det =
+            self.along * d_n.abs() - self.across * d_across - 1e-12 * (self.along + self.across);
         if least_det.is_nan() || least_det <= 0.0 {
             return Settled::Unknown;
         }
@@ -385,18 +381,6 @@ mod tests {
         }
     }
 
-    /// A deterministic stream of numbers in `[0, 1)` (xorshift).
-    struct Stream(u64);
-
-    impl Stream {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     /// Every verdict of the certificate agrees with Bézier clipping (a
     /// second algorithm, run on the same piece): a hit is clipping's hit
     /// (the same root, to rounding), "nothing" is no hit for clipping. Rays
@@ -418,18 +402,16 @@ mod tests {
         let set = pieces.set();
         let tol = Tolerance::default();
         let mut buf = [[0.0; 4]; 48];
-        let mut stream = Stream(0x9e37_79b9_7f4a_7c15);
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || crate::test_unit::unit(&mut state);
         let (mut hits, mut settled_hits, mut unknown) = (0, 0, 0);
         for _ in 0..3000 {
             let aim = Point3::new(
-                1.2 * stream.next() - 0.1,
-                1.2 * stream.next() - 0.1,
-                bend * (2.0 * stream.next() - 0.5),
+                1.2 * next() - 0.1,
+                1.2 * next() - 0.1,
+                bend * (2.0 * next() - 0.5),
             );
-            let (a, b) = (
-                std::f64::consts::TAU * stream.next(),
-                2.0 * stream.next() - 1.0,
-            );
+            let (a, b) = (std::f64::consts::TAU * next(), 2.0 * next() - 1.0);
             let r = (1.0 - b * b).sqrt();
             let dir = Vector3::new(r * a.cos(), r * a.sin(), b);
             let ray = Ray::new(aim - dir * 3.0, dir);

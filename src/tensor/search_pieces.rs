@@ -78,19 +78,40 @@ impl SearchPieces {
         let mut owners: Vec<u32> = (0..patches.len() as u32).collect();
         let mut depth = 0;
         let affordable = |depth: usize, count: usize| depth < 2 || 4 * count <= PIECE_BUDGET;
-        // The fourth cut only for pieces that are not flat and whose
-        // certificate settles too few directions (below).
-        let needs_cut = |depth: usize, pieces: &[Patch]| {
-            let rough = |p: &Patch| !is_flat(p, degrees);
-            if depth < 3 {
+        let rough = |p: &Patch| !is_flat(p, degrees);
+        let certify = |pieces: &[Patch]| -> Vec<Option<ProjectionCertificate>> {
+            pieces
+                .iter()
+                .map(|piece| ProjectionCertificate::new(piece, degrees))
+                .collect()
+        };
+        // The certificates of the pieces at hand, once the fourth cut's
+        // decision has made them (kept if it decides against the cut).
+        let mut certificates = None;
+        while depth < MAX_CUTS && affordable(depth, pieces.len()) {
+            // The fourth cut only for pieces that are not flat and whose
+            // certificate settles too few directions.
+            let cut = if depth < 3 {
                 pieces.iter().any(rough)
             } else {
-                pieces
-                    .iter()
-                    .any(|p| rough(p) && poorly_certified(p, degrees))
+                // Made one by one, up to the first piece that asks for
+                // the cut; all of them when none does.
+                let mut made = Vec::with_capacity(pieces.len());
+                for piece in &pieces {
+                    let certificate = ProjectionCertificate::new(piece, degrees);
+                    if rough(piece) && poorly_certified(piece, certificate.as_ref()) {
+                        break;
+                    }
+                    made.push(certificate);
+                }
+                let cut = made.len() < pieces.len();
+                certificates = Some(made);
+                cut
+            };
+            if !cut {
+                break;
             }
-        };
-        while depth < MAX_CUTS && affordable(depth, pieces.len()) && needs_cut(depth, &pieces) {
+            certificates = None;
             let mut finer = Vec::with_capacity(4 * pieces.len());
             let mut finer_owners = Vec::with_capacity(4 * pieces.len());
             for (piece, &owner) in pieces.iter().zip(&owners) {
@@ -100,6 +121,7 @@ impl SearchPieces {
             (pieces, owners) = (finer, finer_owners);
             depth += 1;
         }
+        let certificates = certificates.unwrap_or_else(|| certify(&pieces));
         let mut scale = 0.0_f64;
         let boxes: Vec<Aabb> = pieces
             .iter()
@@ -113,16 +135,12 @@ impl SearchPieces {
         let boxes: Vec<Aabb> = boxes.iter().map(|b| b.expand(pad)).collect();
         // One piece a leaf; the pieces stored in the hierarchy's order.
         let (tree, order) = Bvh::build(&boxes, 1);
-        let pieces: Vec<Patch> = order.iter().map(|&k| pieces[k].clone()).collect();
         SearchPieces {
             degrees,
             bounds: tree.bounds(),
             tree: WideBvh::new(&tree),
-            certificates: pieces
-                .iter()
-                .map(|piece| ProjectionCertificate::new(piece, degrees))
-                .collect(),
-            pieces,
+            pieces: order.iter().map(|&k| pieces[k].clone()).collect(),
+            certificates: order.iter().map(|&k| certificates[k].clone()).collect(),
             owners: order.iter().map(|&k| owners[k]).collect(),
             scale,
         }
@@ -165,13 +183,14 @@ impl SearchPieces {
     }
 }
 
-/// Whether `piece` is polynomial and its projection certificate is missing
-/// (a fold inside it, or a point without a tangent plane) or holds only for
-/// directions within 45° of its normal (its products' cone is wider than
-/// that): a piece that a fourth cut would serve.
-fn poorly_certified(piece: &Patch, degrees: (usize, usize)) -> bool {
+/// Whether `piece` is polynomial and its projection certificate
+/// (`certificate`) is missing (a fold inside it, or a point without a
+/// tangent plane) or holds only for directions within 45° of its normal
+/// (its products' cone is wider than that): a piece that a fourth cut would
+/// serve.
+fn poorly_certified(piece: &Patch, certificate: Option<&ProjectionCertificate>) -> bool {
     let polynomial = piece.net.iter().all(|h| h.w == 1.0);
-    polynomial && ProjectionCertificate::new(piece, degrees).is_none_or(|c| c.cone_is_wide())
+    polynomial && certificate.is_none_or(ProjectionCertificate::cone_is_wide)
 }
 
 /// Whether `patch`'s projected control points lie within [`FLATNESS`] of

@@ -2,7 +2,7 @@
 
 use super::*;
 
-use crate::revolution::test_unit::unit;
+use crate::test_unit::unit;
 
 /// Random boxes in `[0, scale] × [−scale, scale]` (radius × height),
 /// some touching the axis, some of zero height or zero radial width.

@@ -1,8 +1,8 @@
-//! Test-only: a tiny deterministic generator for the ray modules' unit
-//! tests (xorshift64), so that each test's random cases are reproducible.
+//! Test-only: a tiny deterministic generator for the crate's unit tests
+//! (xorshift64), so that each test's random cases are reproducible.
 
 /// xorshift64: the next value of `state`, as a uniform number in `[0, 1)`.
-pub(super) fn unit(state: &mut u64) -> f64 {
+pub(crate) fn unit(state: &mut u64) -> f64 {
     *state ^= *state << 13;
     *state ^= *state >> 7;
     *state ^= *state << 17;
