@@ -97,6 +97,8 @@ pub(super) fn polish(
         let (mut s, mut t) = (s0, t0);
         // The jet at the last point evaluated, if Newton stopped there.
         let mut last = None;
+        let mut previous = f64::INFINITY;
+        let mut rising = 0;
         for _ in 0..f.iterations.max(8) {
             let (sc, tc) = (s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5));
             let jet = jet(patch, cols, sc, tc);
@@ -113,6 +115,13 @@ pub(super) fn polish(
                 last = Some((sc, tc, jet));
                 break;
             }
+            // Clamped to the domain's margin, or rising twice running:
+            // this start is not converging.
+            rising = if residual >= previous { rising + 1 } else { 0 };
+            if (sc, tc) != (s, t) || rising >= 2 {
+                break;
+            }
+            previous = residual;
             let ds = (fa * j11 - fb * j01) / det;
             let dt = (fb * j00 - fa * j10) / det;
             s -= ds;
