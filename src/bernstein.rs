@@ -45,12 +45,17 @@ pub fn lerp<T: Coefficient>(a: T, b: T, t: f64) -> T {
 ///
 /// Exact (computed in 128-bit integers) while `C(n, k)` fits, which covers every
 /// degree a spline uses in practice; beyond that a product of ratios, correct to
-/// a few ulps.
+/// a few ulps; `+∞` where it exceeds `f64::MAX`. At most about a thousand
+/// steps whatever `n` and `k`: with `k ≤ n/2`, `C(n, k) ≥ 2ᵏ`, so `k > 1024`
+/// is infinite at once.
 pub fn binomial(n: usize, k: usize) -> f64 {
     if k > n {
         return 0.0;
     }
     let k = k.min(n - k);
+    if k > 1024 {
+        return f64::INFINITY;
+    }
     let mut exact: u128 = 1;
     for i in 1..=k {
         // exact · (n − k + i) / i is C(n − k + i, i): always an integer.
@@ -64,6 +69,23 @@ pub fn binomial(n: usize, k: usize) -> f64 {
     exact as f64
 }
 
+/// `ln C(n, k)` for `k ≤ n`, also where `C(n, k)` overflows: there
+/// `k ≥ 1025` and `n − k ≥ 1025`, and Stirling's series with its first
+/// correction term is within a few ulps, written so that nothing cancels:
+/// `k ln(n/k) − (n − k) ln(1 − k/n) + ½ ln(n / (2π k (n − k)))`
+/// `+ 1/(12n) − 1/(12k) − 1/(12(n − k))`.
+fn ln_binomial(n: usize, k: usize) -> f64 {
+    let c = binomial(n, k);
+    if c.is_finite() {
+        return c.ln();
+    }
+    let (n, k) = (n as f64, k.min(n - k) as f64);
+    let m = n - k;
+    k * (n / k).ln() - m * (-k / n).ln_1p()
+        + 0.5 * (n / (std::f64::consts::TAU * k * m)).ln()
+        + (1.0 / n - 1.0 / k - 1.0 / m) / 12.0
+}
+
 /// The row `C(n, 0), …, C(n, n)` of [`binomial`]s (the same values): for
 /// loops over products of binomials, which would otherwise recompute each
 /// one (`O(n)` apiece).
@@ -72,11 +94,51 @@ pub fn binomial_row(n: usize) -> Vec<f64> {
 }
 
 /// The Bernstein basis polynomial `Bᵢⁿ(t) = C(n, i) tⁱ (1 − t)ⁿ⁻ⁱ`; zero when `i > n`.
+///
+/// Never NaN for a finite `t`. Where the three factors would overflow or
+/// underflow on their own (degrees in the thousands and beyond) the value
+/// is taken through logarithms, with its sign; it is then `±∞` only where
+/// the polynomial itself exceeds `f64::MAX` (far outside `[0, 1]`).
 pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
     if i > n {
         return 0.0;
     }
-    binomial(n, i) * powi(t, i) * powi(1.0 - t, n - i)
+    if t == 0.0 || t == 1.0 {
+        // The ends: 1 for the end's own polynomial, 0 for the others.
+        let own = if t == 0.0 { i == 0 } else { i == n };
+        return if own { 1.0 } else { 0.0 };
+    }
+    let (c, a, b) = (binomial(n, i), powi(t, i), powi(1.0 - t, n - i));
+    let normal = |x: f64| x.is_normal() || x == 1.0;
+    if c.is_finite() && normal(a) && normal(b) {
+        let direct = c * a * b;
+        if direct.is_finite() && (direct == 0.0 || direct.is_normal()) {
+            return direct;
+        }
+    }
+    if t.is_nan() {
+        return f64::NAN;
+    }
+    let odd = |x: f64, e: usize| x < 0.0 && e % 2 == 1;
+    let sign = if odd(t, i) != odd(1.0 - t, n - i) {
+        -1.0
+    } else {
+        1.0
+    };
+    if n == 0 {
+        return 1.0;
+    }
+    if t.is_infinite() {
+        return sign * f64::INFINITY;
+    }
+    // sign · exp(ln C + i ln|t| + (n − i) ln|1 − t|).
+    let ln_rest = if t < 1.0 {
+        (-t).ln_1p()
+    } else {
+        (t - 1.0).ln()
+    };
+    let exponent = ln_binomial(n, i) + i as f64 * t.abs().ln() + (n - i) as f64 * ln_rest;
+    sign * exponent.exp()
 }
 
 fn powi(x: f64, n: usize) -> f64 {

@@ -213,7 +213,9 @@ pub(crate) fn finish_derivatives<const D: usize>(
 /// `C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σ_{j=1}^{k} C(k, j) w⁽ʲ⁾ C⁽ᵏ⁻ʲ⁾) / w` (Piegl & Tiller,
 /// *The NURBS Book*, eq. 4.8). `h[0].w` must be positive.
 pub(crate) fn quotient_rule<const D: usize>(h: &[Homogeneous<D>], out: &mut [SVector<f64, D>]) {
-    let w = h[0].w;
+    let Some(w) = h.first().map(|h0| h0.w) else {
+        return;
+    };
     for k in 0..h.len().min(out.len()) {
         let mut v = h[k].wp;
         // C(k, j) built up along the row.

@@ -194,10 +194,13 @@ impl<const D: usize> RationalBezier<D> {
     /// [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER);
     /// [`Error::DerivativeOverflow`] with the first order that is not finite.
     pub fn derivatives(&self, t: f64, out: &mut [SVector<f64, D>]) -> Result<(), Error> {
+        let orders = out.len();
+        if orders == 0 {
+            return Ok(());
+        }
+        check_derivative_order(orders - 1)?;
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.homogeneous.len();
-        let orders = out.len();
-        check_derivative_order(orders.saturating_sub(1))?;
         with_scratch(orders + n, Homogeneous::zero(), |s| {
             let (h, work) = s.split_at_mut(orders);
             for (k, hk) in h.iter_mut().enumerate() {

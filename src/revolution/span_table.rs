@@ -241,6 +241,8 @@ struct Piece {
     points: Vec<Vector2<f64>>,
     weights: Option<Vec<f64>>,
 }
+/// The exponent of the largest working unit, `2^1000`.
+const MAX_UNIT_EXPONENT: i32 = 1000;
 /// The power of two that brings the largest control-point coordinate of
 /// `spans` into `[0.5, 1)` (1 when they are all zero): multiplying by it is
 /// exact, so the working frame is the same profile, only rescaled.
@@ -252,8 +254,14 @@ fn working_unit(spans: &[RationalBezierSpan<2>]) -> f64 {
     if !(size > 0.0 && size.is_finite()) {
         return 1.0;
     }
-    // size = f·2^e with f in [0.5, 1): the unit is 2^−e.
+    // size = f·2^e with f in [0.5, 1): the unit is 2^−e. A profile below
+    // 2^−1000 (subnormal coordinates) is brought up by 2^1000 only, the
+    // largest unit whose reciprocal stays a normal number: its working
+    // scale is then below 0.5, which the solver's relative bounds allow.
     let e = size.log2().floor() as i32 + 1;
+    if e < -MAX_UNIT_EXPONENT {
+        return 2.0_f64.powi(MAX_UNIT_EXPONENT);
+    }
     let unit = 2.0_f64.powi(-e);
     // log2 may round across a power of two: settle it exactly.
     if size * unit >= 1.0 {

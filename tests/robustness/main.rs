@@ -6,5 +6,6 @@
 
 mod errors;
 mod extremes;
+mod findings;
 mod fuzz;
 mod robustness;
