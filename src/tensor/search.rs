@@ -328,9 +328,25 @@ pub(super) fn clip_search(
                 }
                 continue;
             }
-            // Clipping stalls (several roots, or a tangency): halve in the
-            // wider parameter, go on with the nearer half and leave the
-            // other for later.
+            // Clipping stalls (several roots, a tangency, or coefficients
+            // that rounding blurs, as on a patch not much bigger than the
+            // acceptance): a box whose image is already within the
+            // acceptance of one point is decided by its corner, as above;
+            // any other is halved in the wider parameter, the search going
+            // on with the nearer half and leaving the other for later.
+            if !(whole || thin) && extent(work, noise()) <= frame.acceptance.distance {
+                let c = work[0];
+                let off = c[0].hypot(c[1]) / c[3];
+                if frame.acceptance.accepts(off) {
+                    nearest.offer(PatchHit {
+                        patch: k,
+                        t: c[2] / c[3] / dn,
+                        u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
+                        v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
+                    });
+                }
+                continue 'cells;
+            }
             let split_s = ws >= wt;
             halve(work, spare, p, q, split_s);
             let (first, second) = if split_s {

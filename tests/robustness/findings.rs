@@ -128,3 +128,65 @@ fn a_revolution_of_subnormal_size_is_intersected_at_once() {
     );
     assert!(bounds.max.x < 1e-300, "{bounds:?}");
 }
+
+/// A patch barely bigger than the acceptance (its control points within
+/// 1e-13 to 1e-10 of one point) beside an ordinary one, at scales from
+/// 1e-300 to 1e100. Rounding blurs its coefficients, so clipping stalls
+/// and the search used to halve it down to boxes of 2⁻¹⁴ on a side: up to
+/// 15 s a ray.
+#[test]
+fn a_patch_barely_bigger_than_the_acceptance_is_searched_at_once() {
+    use revolve::{BezierPatches, BezierSurface};
+    use revolve_testkit::Rng;
+    let elapsed = returns_within(20, || {
+        let start = std::time::Instant::now();
+        let mut rng = Rng(11);
+        let mut slowest = 0.0_f64;
+        for _ in 0..300 {
+            let scale = 10f64.powf(rng.range(-300.0, 100.0));
+            let point = |rng: &mut Rng, s: f64| {
+                Point3::new(
+                    (rng.unit() - 0.5) * s,
+                    (rng.unit() - 0.5) * s,
+                    (rng.unit() - 0.5) * s,
+                )
+            };
+            let (r1, c1) = (1 + rng.below(4), 1 + rng.below(4));
+            let (r2, c2) = (1 + rng.below(4), 1 + rng.below(4));
+            let ordinary: Vec<Vec<Point3<f64>>> = (0..r1)
+                .map(|_| (0..c1).map(|_| point(&mut rng, scale)).collect())
+                .collect();
+            let centre = point(&mut rng, scale);
+            let tiny = 10f64.powf(rng.range(-13.0, -10.0));
+            let near_point: Vec<Vec<Point3<f64>>> = (0..r2)
+                .map(|_| {
+                    (0..c2)
+                        .map(|_| centre + point(&mut rng, scale * tiny).coords)
+                        .collect()
+                })
+                .collect();
+            let model = BezierPatches::new(vec![
+                BezierSurface::new(ordinary).unwrap(),
+                BezierSurface::new(near_point).unwrap(),
+            ])
+            .unwrap();
+            for _ in 0..4 {
+                let origin = point(&mut rng, 3.0 * scale);
+                let aim = centre + point(&mut rng, scale * tiny).coords;
+                let ray = Ray::new(origin, aim - origin);
+                let ray_start = std::time::Instant::now();
+                if let Some(hit) = model.intersect(&ray, 0.0, f64::INFINITY) {
+                    let off = (ray.at(hit.t) - hit.point).norm();
+                    assert!(off <= 1e-9 * scale, "{ray:?}: {hit:?}");
+                }
+                slowest = slowest.max(ray_start.elapsed().as_secs_f64());
+            }
+        }
+        (start.elapsed().as_secs_f64(), slowest)
+    });
+    // About 0.1 s for the 1 200 rays now, under a millisecond a ray; 10 s
+    // and more before, up to seconds a ray (1 s is the fuzzer's mark of a
+    // slow call).
+    assert!(elapsed.0 < 3.0, "1 200 rays took {} s", elapsed.0);
+    assert!(elapsed.1 < 1.0, "slowest ray {} s", elapsed.1);
+}

@@ -1515,41 +1515,36 @@ fn fuzz_testing_support() {
 fn fuzz_tensor_surfaces() {
     fuzz("tensor surfaces", 0..30_000, |f| {
         let (rows, cols) = (1 + f.below(5), 1 + f.below(5));
-        let scale = f.scale();
-        let mut grid: Vec<Vec<Point3<f64>>> = (0..rows)
-            .map(|_| {
-                let mut row: Vec<Point3<f64>> = (0..cols)
-                    .map(|_| {
-                        let c = [
-                            f.coordinate(scale),
-                            f.coordinate(scale),
-                            f.coordinate(scale),
-                        ];
-                        Point3::new(c[0], c[1], c[2])
-                    })
-                    .collect();
-                if f.chance(6) && !row.is_empty() {
-                    // A collapsed row (a pole, as on the teapot's lid).
-                    let first = row[0];
-                    row.iter_mut().for_each(|p| *p = first);
-                }
-                row
-            })
-            .collect();
-        if f.chance(40) {
-            grid[0].pop(); // ragged
-        }
-        if f.chance(60) {
-            grid.clear(); // empty
-        }
+        let grid = control_grid(f, rows, cols);
         match f.below(3) {
             0 => {
                 if let Some(Ok(s)) = f.call("BezierSurface::new", || BezierSurface::new(grid)) {
                     tensor_case(f, &s, "BezierSurface");
-                    if let Some(Ok(m)) = f.call("BezierPatches::new", || {
-                        BezierPatches::new(vec![s.clone(), s])
-                    }) {
-                        patches_case(f, &m);
+                    // Beside a copy of itself, or beside another patch of
+                    // any shape and size (degenerate ones included: one
+                    // row, one column, all points within 1e-9 of one).
+                    let other = if f.chance(2) {
+                        Some(s.clone())
+                    } else {
+                        let (rows, cols) = (1 + f.below(5), 1 + f.below(5));
+                        let mut grid = control_grid(f, rows, cols);
+                        if f.chance(3) {
+                            let centre = grid.first().and_then(|r| r.first()).copied();
+                            for p in grid.iter_mut().flatten() {
+                                if let Some(c) = centre {
+                                    *p = c + (*p - c) * 1e-9;
+                                }
+                            }
+                        }
+                        f.call("BezierSurface::new", || BezierSurface::new(grid))
+                            .and_then(Result::ok)
+                    };
+                    if let Some(other) = other {
+                        if let Some(Ok(m)) = f.call("BezierPatches::new", || {
+                            BezierPatches::new(vec![s.clone(), other])
+                        }) {
+                            patches_case(f, &m);
+                        }
                     }
                 }
             }
@@ -1574,6 +1569,39 @@ fn fuzz_tensor_surfaces() {
             }
         }
     });
+}
+
+/// A grid of control points of `rows × cols` at a random scale, with now
+/// and then a collapsed row (a pole, as on the teapot's lid), a ragged row
+/// or no rows at all.
+fn control_grid(f: &mut Fuzz, rows: usize, cols: usize) -> Vec<Vec<Point3<f64>>> {
+    let scale = f.scale();
+    let mut grid: Vec<Vec<Point3<f64>>> = (0..rows)
+        .map(|_| {
+            let mut row: Vec<Point3<f64>> = (0..cols)
+                .map(|_| {
+                    let c = [
+                        f.coordinate(scale),
+                        f.coordinate(scale),
+                        f.coordinate(scale),
+                    ];
+                    Point3::new(c[0], c[1], c[2])
+                })
+                .collect();
+            if f.chance(6) && !row.is_empty() {
+                let first = row[0];
+                row.iter_mut().for_each(|p| *p = first);
+            }
+            row
+        })
+        .collect();
+    if f.chance(40) {
+        grid[0].pop();
+    }
+    if f.chance(60) {
+        grid.clear();
+    }
+    grid
 }
 
 /// A parameter: mostly inside the domain, sometimes extreme.
