@@ -28,6 +28,14 @@ pub enum Error {
         /// The offending coordinate.
         value: f64,
     },
+    /// A ray whose origin or direction has a NaN or infinite coordinate, or
+    /// whose direction is zero ([`Ray::try_new`](crate::Ray::try_new)).
+    InvalidRay {
+        /// The origin given.
+        origin: [f64; 3],
+        /// The direction given.
+        dir: [f64; 3],
+    },
     /// A rational curve needs one weight per control point.
     WeightCount {
         /// The number of control points.
@@ -144,6 +152,19 @@ pub enum Error {
         times: usize,
         /// The largest degree elevation may produce.
         max: usize,
+    },
+    /// Degree elevation would move the curve: at high degree over short
+    /// knot spans, the new control points amplify rounding beyond
+    /// [`ELEVATION_ACCURACY`](crate::curve::ELEVATION_ACCURACY) of the
+    /// curve's size, so the elevated curve would not be the same curve.
+    ElevationInexact {
+        /// The curve's degree.
+        degree: usize,
+        /// How many times elevation was asked for.
+        times: usize,
+        /// The largest distance found between the two curves, relative to
+        /// the largest control-point coordinate.
+        deviation: f64,
     },
 
     // Parameters, query points and derivatives.
@@ -312,6 +333,11 @@ impl fmt::Display for Error {
             Error::NonFinitePoint { index } => {
                 write!(f, "control point {index} has a NaN or infinite coordinate")
             }
+            Error::InvalidRay { origin, dir } => write!(
+                f,
+                "a ray needs a finite origin and a finite, non-zero direction, not origin {:?} and direction {:?}",
+                origin, dir
+            ),
             Error::CoordinateTooLarge { index, value } => write!(
                 f,
                 "control point {index} has coordinate {}, beyond the supported magnitude {}",
@@ -402,6 +428,16 @@ impl fmt::Display for Error {
                 f,
                 "elevating degree {degree} by {times} would exceed the largest supported \
                  degree {max}"
+            ),
+            Error::ElevationInexact {
+                degree,
+                times,
+                deviation,
+            } => write!(
+                f,
+                "elevating degree {degree} by {times} would move the curve by {} of its size \
+                 (rounding grows with the degree over short knot spans): not the same curve",
+                Num(deviation)
             ),
             Error::ParameterOutOfDomain { t, domain } => write!(
                 f,

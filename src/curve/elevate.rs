@@ -18,13 +18,54 @@ use super::{clamp_to_box, point_bounds};
 use crate::allocation::try_with_capacity;
 use crate::bernstein::{Coefficient, elevate_degree, lerp};
 use crate::scratch::with_scratch;
-use crate::{BSpline, Bezier, Error, Nurbs, RationalBezier};
+use crate::{BSpline, Bezier, Curve, Error, Nurbs, RationalBezier};
 use nalgebra::{Point, SVector};
 
 /// The largest degree that degree elevation produces (`64`); asking for
 /// more is [`Error::ElevationTooHigh`]. Elevating by zero is always allowed
 /// (it returns a copy), whatever the degree.
 pub const MAX_ELEVATED_DEGREE: usize = 64;
+
+/// The largest distance, relative to the largest control-point coordinate,
+/// that an elevated spline may lie from the original at the points checked
+/// (`1e-11`); beyond, `elevate_degree` is [`Error::ElevationInexact`].
+pub const ELEVATION_ACCURACY: f64 = 1e-11;
+
+/// Parameters checked per non-empty span, besides its ends.
+const CHECKS_PER_SPAN: usize = 7;
+
+/// That `raised` (the elevation of `curve` by `times`) is the same curve:
+/// both evaluated at the ends and [`CHECKS_PER_SPAN`] points of every
+/// non-empty span of `curve`, no farther apart than
+/// [`ELEVATION_ACCURACY`] of the size of `curve`'s box `(lo, hi)`.
+fn same_curve<const D: usize, C: Curve<D>>(
+    curve: &C,
+    raised: &C,
+    knots: &[f64],
+    degree: usize,
+    times: usize,
+    (lo, hi): (Point<f64, D>, Point<f64, D>),
+) -> Result<(), Error> {
+    let size = lo.coords.amax().max(hi.coords.amax());
+    let n = knots.len() - degree - 1;
+    let mut worst = 0.0_f64;
+    for i in nonempty_spans(knots, degree, n) {
+        let (a, b) = (knots[i], knots[i + 1]);
+        for k in 0..=CHECKS_PER_SPAN + 1 {
+            let t = a + (b - a) * k as f64 / (CHECKS_PER_SPAN + 1) as f64;
+            worst = worst.max((curve.eval(t) - raised.eval(t)).amax());
+        }
+    }
+    let deviation = if size > 0.0 { worst / size } else { worst };
+    if deviation > ELEVATION_ACCURACY || deviation.is_nan() {
+        return Err(Error::ElevationInexact {
+            degree,
+            times,
+            deviation,
+        });
+    }
+    Ok(())
+}
 
 /// The degree `degree + times`, or [`Error::ElevationTooHigh`] when that
 /// exceeds [`MAX_ELEVATED_DEGREE`] or overflows (`times == 0` always
@@ -337,7 +378,9 @@ impl<const D: usize> BSpline<D> {
             .into_iter()
             .map(|v| Point::from(clamp_to_box(v, bounds)))
             .collect();
-        BSpline::new(self.degree() + times, knots, points)
+        let raised = BSpline::new(self.degree() + times, knots, points)?;
+        same_curve(self, &raised, self.knots(), self.degree(), times, bounds)?;
+        Ok(raised)
     }
 }
 
@@ -380,7 +423,9 @@ impl<const D: usize> Nurbs<D> {
                 (p, h.w * scale)
             })
             .unzip();
-        Nurbs::new(self.degree() + times, knots, points, weights)
+        let raised = Nurbs::new(self.degree() + times, knots, points, weights)?;
+        same_curve(self, &raised, self.knots(), self.degree(), times, bounds)?;
+        Ok(raised)
     }
 }
 

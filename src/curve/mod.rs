@@ -35,7 +35,7 @@ mod rational_bezier;
 pub use arc_length::ArcLength;
 pub use bezier::{Bezier, BezierSpan};
 pub use bspline::BSpline;
-pub use elevate::MAX_ELEVATED_DEGREE;
+pub use elevate::{ELEVATION_ACCURACY, MAX_ELEVATED_DEGREE};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 pub use homogeneous::MAX_DERIVATIVE_ORDER;

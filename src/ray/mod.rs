@@ -26,9 +26,40 @@ pub struct Ray {
 }
 
 impl Ray {
-    /// The ray from `origin` along `dir`.
+    /// The ray from `origin` along `dir`. Not checked: a ray whose origin is
+    /// not finite or whose direction is zero or not finite misses everything
+    /// ([`Ray::try_new`] says so instead).
     pub fn new(origin: Point3<f64>, dir: Vector3<f64>) -> Self {
         Ray { origin, dir }
+    }
+
+    /// The ray from `origin` along `dir`, checked.
+    ///
+    /// # Errors
+    /// [`Error::InvalidRay`] when a coordinate of `origin` or `dir` is NaN or
+    /// infinite, or `dir` is zero.
+    ///
+    /// ```
+    /// use revolve::nalgebra::{Point3, Vector3};
+    /// use revolve::{Error, Ray};
+    ///
+    /// let ray = Ray::try_new(Point3::origin(), Vector3::new(0.0, 0.0, 2.0))?;
+    /// assert_eq!(ray.at(1.0), Point3::new(0.0, 0.0, 2.0));
+    /// assert!(matches!(
+    ///     Ray::try_new(Point3::origin(), Vector3::zeros()),
+    ///     Err(Error::InvalidRay { .. })
+    /// ));
+    /// # Ok::<(), Error>(())
+    /// ```
+    pub fn try_new(origin: Point3<f64>, dir: Vector3<f64>) -> Result<Self, Error> {
+        let finite = origin.iter().chain(dir.iter()).all(|c| c.is_finite());
+        if !finite || dir == Vector3::zeros() {
+            return Err(Error::InvalidRay {
+                origin: origin.into(),
+                dir: dir.into(),
+            });
+        }
+        Ok(Ray { origin, dir })
     }
 
     /// The point `origin + t·dir`.

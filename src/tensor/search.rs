@@ -347,6 +347,27 @@ pub(super) fn clip_search(
                 }
                 continue 'cells;
             }
+            // A box all of whose image lies within the acceptance of the
+            // ray (a patch lying along the ray, as a needle can): every
+            // point of it is a hit, so its corners are offered at once (the
+            // nearest is kept), and the halving goes on only while some of
+            // the box could be nearer than that (the window prunes the
+            // rest), instead of halving a box no clip can shrink down to
+            // 2⁻¹⁴ on a side everywhere.
+            if lateral(work) + noise() <= frame.acceptance.distance {
+                let cols = q + 1;
+                for (i, j) in [(0, 0), (0, q), (p, 0), (p, q)] {
+                    let c = work[i * cols + j];
+                    let s_at = if i == 0 { cell.s.0 } else { cell.s.1 };
+                    let t_at = if j == 0 { cell.t.0 } else { cell.t.1 };
+                    nearest.offer(PatchHit {
+                        patch: k,
+                        t: c[2] / c[3] / dn,
+                        u: patch.u.0 + (patch.u.1 - patch.u.0) * s_at,
+                        v: patch.v.0 + (patch.v.1 - patch.v.0) * t_at,
+                    });
+                }
+            }
             let split_s = ws >= wt;
             halve(work, spare, p, q, split_s);
             let (first, second) = if split_s {
@@ -480,6 +501,13 @@ fn extent(coef: &[[f64; 4]], noise: f64) -> f64 {
         }
     }
     (0..3).map(|a| hi[a] - lo[a]).sum::<f64>() + 2.0 * noise
+}
+
+/// The largest distance from the ray of a control point of the box,
+/// `|(α, β)|/w`: the whole image lies within it of the ray.
+fn lateral(coef: &[[f64; 4]]) -> f64 {
+    coef.iter()
+        .fold(0.0_f64, |m, c| m.max(c[0].hypot(c[1]) / c[3]))
 }
 
 /// The sub-range `r` (of `[0, 1]`) of the interval `x`.

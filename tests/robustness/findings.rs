@@ -98,10 +98,13 @@ fn bernstein_values_are_never_nan_and_sum_to_one() {
     }
 }
 
+/// A profile of subnormal size used to hang the intersector: its working
+/// unit (the power of two that brings it to size 1) overflowed.
 #[test]
 fn a_revolution_of_subnormal_size_is_intersected_at_once() {
     // A cylinder of radius and half-height 1e-310 about the origin.
-    let profile = Bezier::new(vec![p(1e-310, -1e-310), p(1e-310, 1e-310)]).unwrap();
+    let size = 1e-310;
+    let profile = Bezier::new(vec![p(size, -size), p(size, size)]).unwrap();
     let surface = Revolution::new(profile);
     // Through the origin at t = 2, and 1e-3 beside it.
     let through = Ray::new(Point3::new(2.0, 0.3, 0.4), Vector3::new(-1.0, -0.15, -0.2));
@@ -119,13 +122,10 @@ fn a_revolution_of_subnormal_size_is_intersected_at_once() {
     let hit = hit.expect("the ray through the origin meets the cylinder");
     assert!((hit.t - 2.0).abs() < 1e-12, "{hit:?}");
     let radius = hit.point.x.hypot(hit.point.z);
-    assert!((radius / 1e-310 - 1.0).abs() < 1e-6, "{hit:?}");
-    assert!(hit.point.y.abs() <= 1e-310, "{hit:?}");
+    assert!((radius / size - 1.0).abs() < 1e-6, "{hit:?}");
+    assert!(hit.point.y.abs() <= size, "{hit:?}");
     assert!(miss.is_none(), "{miss:?}");
-    assert!(
-        bounds.min.x <= -1e-310 && bounds.max.y >= 1e-310,
-        "{bounds:?}"
-    );
+    assert!(bounds.min.x <= -size && bounds.max.y >= size, "{bounds:?}");
     assert!(bounds.max.x < 1e-300, "{bounds:?}");
 }
 
@@ -189,4 +189,107 @@ fn a_patch_barely_bigger_than_the_acceptance_is_searched_at_once() {
     // slow call).
     assert!(elapsed.0 < 3.0, "1 200 rays took {} s", elapsed.0);
     assert!(elapsed.1 < 1.0, "slowest ray {} s", elapsed.1);
+}
+
+/// A patch collapsed to a segment (one row a point, the other within 1e-13
+/// of one) lying along the ray: every point of it is within the acceptance
+/// of the ray, no clip can shrink a box, and the search used to halve it
+/// down to boxes of 2⁻¹⁴ on a side (64 million boxes, 39 s). The nearest
+/// hit is the segment's near end.
+#[test]
+fn a_patch_lying_along_the_ray_is_searched_at_once() {
+    use revolve::BezierSurface;
+    let p3 = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+    let near_end = p3(
+        1.979_511_357_050_204_3e24,
+        2.279_964_399_374_795_3e24,
+        -7.522_403_712_775_589e23,
+    );
+    let far_end = p3(
+        -2.029_927_981_033_827_5e24,
+        -2.407_972_581_519_525e24,
+        -1.689_648_436_244_834_3e24,
+    );
+    let surface = BezierSurface::new(vec![
+        vec![
+            p3(
+                1.979_511_357_050_348_4e24,
+                2.279_964_399_374_917_2e24,
+                -7.522_403_712_777_678e23,
+            ),
+            p3(
+                1.979_511_357_050_011_3e24,
+                2.279_964_399_374_480_5e24,
+                -7.522_403_712_777_436e23,
+            ),
+            p3(
+                1.979_511_357_050_237_8e24,
+                2.279_964_399_374_620_6e24,
+                -7.522_403_712_776_616e23,
+            ),
+            near_end,
+        ],
+        vec![far_end; 4],
+    ])
+    .unwrap();
+    let ray = Ray::new(
+        p3(
+            4.351_025_735_039_068_4e24,
+            5.052_798_458_165_929e24,
+            -1.977_796_308_455_211e23,
+        ),
+        Vector3::new(
+            -4.009_439_338_084_311e24,
+            -4.687_936_980_894_62e24,
+            -9.374_080_649_670_552e23,
+        ),
+    );
+    let hit = returns_within(5, move || surface.intersect(&ray, 0.0, f64::INFINITY))
+        .expect("the segment lies along the ray");
+    // The near end, where the ray passes within the acceptance
+    // (1e-12 of the origin's size) of it.
+    assert!((hit.point - near_end).norm() <= 1e-12 * 5.1e24, "{hit:?}");
+    assert!(
+        (ray.at(hit.t) - hit.point).norm() <= 1e-12 * 5.1e24,
+        "{hit:?}"
+    );
+}
+
+/// Degree elevation at high degree over short knot spans amplified
+/// rounding until the curve moved by 0.47 (degree 25); the docs promise the
+/// same curve or an `Err`.
+#[test]
+fn degree_elevation_keeps_the_curve_or_says_it_cannot() {
+    use revolve::{BSpline, Curve, Error};
+    let points: Vec<Point2<f64>> = (0..50)
+        .map(|i| p(i as f64 / 49.0, (1.7 * i as f64).sin()))
+        .collect();
+    let mut refused = 0;
+    for degree in [3, 8, 16, 20, 25] {
+        let curve = BSpline::clamped(degree, points.clone()).unwrap();
+        match curve.elevate_degree(1) {
+            Ok(raised) => {
+                assert_eq!(raised.degree(), degree + 1);
+                let (a, b) = curve.domain();
+                let worst = (0..=2000)
+                    .map(|k| a + (b - a) * k as f64 / 2000.0)
+                    .map(|t| (curve.eval(t) - raised.eval(t)).norm())
+                    .fold(0.0, f64::max);
+                assert!(worst <= 1e-10, "degree {degree}: moved by {worst}");
+            }
+            Err(Error::ElevationInexact { deviation, .. }) => {
+                assert!(deviation > 1e-11, "degree {degree}: {deviation}");
+                refused += 1;
+            }
+            Err(e) => panic!("degree {degree}: {e}"),
+        }
+    }
+    // The low degrees are elevated; degree 25 (moved by 0.47) is refused.
+    assert!((1..=3).contains(&refused), "{refused} refused");
+    assert!(
+        BSpline::clamped(3, points)
+            .unwrap()
+            .elevate_degree(2)
+            .is_ok()
+    );
 }

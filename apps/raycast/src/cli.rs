@@ -21,7 +21,7 @@
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
-use crate::effects::Effects;
+use crate::effects::{Effects, MAX_SAMPLES};
 use crate::image_out;
 use crate::parse;
 use crate::render::{self, Options};
@@ -73,6 +73,11 @@ pub fn parse_args<I: IntoIterator<Item = String>>(args: I) -> Result<Args, Strin
                     .map_err(|_| format!("--samples needs a positive integer, not {v:?}"))?;
                 if n == 0 {
                     return Err("--samples needs a positive integer, not 0".into());
+                }
+                if n > MAX_SAMPLES {
+                    return Err(format!(
+                        "--samples is {n}, more than the largest, {MAX_SAMPLES}"
+                    ));
                 }
                 samples = Some(n);
             }
@@ -155,6 +160,15 @@ pub fn run_warning_to<I: IntoIterator<Item = String>>(
     if let Some(seed) = args.seed {
         options.seed = seed;
     }
+    if !args.quiet {
+        let (w, h) = (scene.camera.width as u64, scene.camera.height as u64);
+        println!(
+            "rendering {w} × {h} at {} sample{} a pixel: {} camera rays",
+            effects.samples,
+            if effects.samples == 1 { "" } else { "s" },
+            w * h * u64::from(effects.samples)
+        );
+    }
     let (image, stats) =
         render::render(&scene, &options).map_err(|e| format!("{}: {e}", args.scene.display()))?;
     image_out::write_png(&image, effects.tone_map, &args.out)?;
@@ -204,6 +218,9 @@ mod tests {
     #[test]
     fn bad_arguments_are_errors() {
         assert!(args(&["--samples"]).is_err());
+        assert!(args(&["--samples", "65536"]).is_ok());
+        let e = args(&["--samples", "65537"]).expect_err("beyond the largest");
+        assert!(e.contains("more than the largest, 65536"), "{e}");
         assert!(args(&["--samples", "0"]).is_err());
         assert!(args(&["--samples", "many"]).is_err());
         assert!(args(&["-o"]).is_err());

@@ -30,6 +30,9 @@ pub const DEFAULT_PATH_DEPTH: u32 = 8;
 /// code is clamped to it. The Whitted tracer recurses once per bounce, so
 /// this bounds its stack (about a kilobyte a level).
 pub const MAX_DEPTH: u32 = 100;
+/// The most samples a pixel (2¹⁶): the parser and the command line refuse
+/// more (`samples 1e9` on a 640 × 480 image would be 3·10¹⁴ rays).
+pub const MAX_SAMPLES: u32 = 1 << 16;
 /// Light samples per shading point and pixel: an area light gets
 /// `max(1, LIGHT_SAMPLE_BUDGET / samples)` samples per shading point, so a
 /// pixel gathers about this many whatever its own sample count.

@@ -160,13 +160,36 @@ pub struct Parsed {
 /// Reads and parses the scene file at `path` (meshes and textures are
 /// resolved relative to its directory), keeping the warnings.
 pub fn parse_file_with_warnings(path: &Path) -> Result<Parsed, ParseError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ParseError {
+    let bytes = std::fs::read(path).map_err(|e| ParseError {
         file: path.to_path_buf(),
         line: 0,
         column: 0,
         message: format!("cannot read the scene file: {e}"),
     })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let (line, column) = byte_position(e.as_bytes(), e.utf8_error().valid_up_to());
+        ParseError {
+            file: path.to_path_buf(),
+            line,
+            column,
+            message: "the scene file is not valid UTF-8 text here (a scene is plain text)"
+                .to_string(),
+        }
+    })?;
     parse_str_with_warnings(&text, path)
+}
+
+/// The line and column (both from 1; the column counts characters) of
+/// byte `at` of `bytes`, whose bytes before `at` are valid UTF-8.
+fn byte_position(bytes: &[u8], at: usize) -> (usize, usize) {
+    let before = &bytes[..at.min(bytes.len())];
+    let line_start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let line = 1 + before.iter().filter(|&&b| b == b'\n').count();
+    let column = 1 + std::str::from_utf8(&before[line_start..]).map_or(0, |s| s.chars().count());
+    (line, column)
 }
 
 /// Parses scene text, keeping the warnings; `path` names it in errors and

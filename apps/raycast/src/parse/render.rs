@@ -1,9 +1,9 @@
 //! `Render { samples N  maxDepth N  shadows true|false  integrator whitted|path
 //! toneMap clamp|reinhard }`: every key optional, each at most once;
-//! `maxDepth` at most [`MAX_DEPTH`].
+//! `samples` at most [`MAX_SAMPLES`], `maxDepth` at most [`MAX_DEPTH`].
 
 use super::cursor::{Cursor, Result};
-use crate::effects::MAX_DEPTH;
+use crate::effects::{MAX_DEPTH, MAX_SAMPLES};
 use crate::scene::{Integrator, RenderSettings, ToneMap};
 
 const BLOCK: &str = "Render";
@@ -16,7 +16,14 @@ pub(super) fn render(c: &mut Cursor<'_>) -> Result<RenderSettings> {
     while let Some(key) = c.key(BLOCK, open)? {
         match key.text {
             "samples" => c.field(&mut settings.samples, key, BLOCK, |c, w| {
-                Ok(c.whole(w, 1)?.0)
+                let (samples, at) = c.whole(w, 1)?;
+                if samples > MAX_SAMPLES {
+                    return Err(c.error(
+                        at,
+                        format!("'samples' is {samples}, more than the largest, {MAX_SAMPLES}"),
+                    ));
+                }
+                Ok(samples)
             })?,
             "maxDepth" => c.field(&mut settings.max_depth, key, BLOCK, |c, w| {
                 let (depth, at) = c.whole(w, 0)?;

@@ -132,3 +132,18 @@ fn scene_file_missing() {
     assert_eq!((e.line, e.column), (0, 0));
     assert!(e.message.starts_with("cannot read the scene file: "), "{e}");
 }
+
+#[test]
+fn scene_file_not_utf8_names_the_first_bad_byte() {
+    let dir = TempDir::new("not-utf8");
+    // Line 2, after "  Sphere" and a two-byte 'é' (one character).
+    let mut bytes = format!("{CAMERA}Group {{\n").into_bytes();
+    let line = CAMERA.lines().count() + 2;
+    bytes.extend_from_slice("  Sphéré".as_bytes()[..7].as_ref());
+    bytes.push(0xff);
+    bytes.extend_from_slice(b" { center 0 0 0 radius 1 }\n}\n");
+    let path = dir.write("scene.txt", &bytes);
+    let e = crate::parse::parse_file(&path).expect_err("not UTF-8");
+    assert_eq!((e.line, e.column), (line, 7), "{e}");
+    assert!(e.message.contains("not valid UTF-8"), "{e}");
+}

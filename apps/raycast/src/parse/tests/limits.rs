@@ -2,7 +2,7 @@
 //! depth of groups and transforms, and the render depth.
 
 use super::{CAMERA, assert_error, in_group, parse};
-use crate::effects::MAX_DEPTH;
+use crate::effects::{MAX_DEPTH, MAX_SAMPLES};
 use crate::parse::MAX_NESTING;
 
 /// `levels` blocks opened by `open` (their keyword, `{` and any steps)
@@ -102,6 +102,19 @@ fn max_depth_is_bounded() {
         2,
         19,
         "'maxDepth' is 4000000000, more than the largest, 100",
+    );
+}
+
+#[test]
+fn samples_are_bounded() {
+    let ok = parse(&format!("{CAMERA}Render {{ samples {MAX_SAMPLES} }}"));
+    assert_eq!(ok.render.samples, Some(MAX_SAMPLES));
+    // 1e9 samples a pixel of a 640 × 480 image would be 3·10¹⁴ rays.
+    assert_error(
+        &format!("{CAMERA}Render {{ samples 1e9 }}"),
+        2,
+        18,
+        "'samples' is 1000000000, more than the largest, 65536",
     );
 }
 
