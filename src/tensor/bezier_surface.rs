@@ -27,7 +27,13 @@ use nalgebra::{Point3, Unit, Vector3};
 ///   the limit from inside the domain: with the inward direction `d` toward
 ///   the domain's centre, `N(x + h·d) = h·N₁ + O(h²)` with
 ///   `N₁ = d_u(S_uu×S_v + S_u×S_uv) + d_v(S_uv×S_v + S_u×S_vv)` (second
-///   partials, analytic), so the limit is `N₁/|N₁|`. On a collapsed edge
+///   partials, analytic), so the limit is `N₁/|N₁|`. At a *collapsed
+///   corner* (one partial vanishes there but neither edge collapses, as
+///   where `P₁₀ = P₀₀`) the normal along the inward direction `(a, b)` is
+///   `∝ a·A + b·B` (with `S_u = 0`: `A = S_uu×S_v`, `B = S_uv×S_v`; with
+///   `S_v = 0`: `A = S_u×S_uv`, `B = S_u×S_vv`, each `A`, `B` signed by
+///   the inward side): the normal is their common direction when they point
+///   the same way (within `10⁻⁷`), and `None` (a cone point) when not. On a collapsed edge
 ///   of the domain that limit is the tangent plane only if every direction
 ///   leaving the edge lies in it (the net's first differences off the edge
 ///   are all perpendicular to it, within `10⁻⁷`, as on the teapot's lid,

@@ -293,3 +293,66 @@ fn degree_elevation_keeps_the_curve_or_says_it_cannot() {
             .is_ok()
     );
 }
+
+/// A patch whose corner control point is doubled (`P₁₀ = P₀₀`) has, near
+/// that corner, normals `∝ (a S_uu + b S_uv) × S_v` along the inward
+/// direction `(a, b)`: a tangent plane when `S_uu × S_v` and `S_uv × S_v`
+/// point the same way (here `P₀₀`, `P₀₁`, `P₁₁`, `P₂₀` lie in one plane),
+/// a cone point otherwise. `normal(0, 0)` used to be `None` in both cases,
+/// for all three tensor surface kinds. The reference: normals sampled at
+/// distance 1e-6 from the corner along nine inward directions.
+#[test]
+fn a_collapsed_corner_has_the_limit_normal_where_there_is_one() {
+    use revolve::{BSplineSurface, BezierSurface, NurbsSurface, Surface};
+    let height = |x: f64, y: f64| 0.3 * x * x - 0.2 * x * y + 0.1 * y * y * y + 0.05 * x;
+    for planar in [true, false] {
+        let mut grid: Vec<Vec<Point3<f64>>> = (0..4)
+            .map(|i| {
+                (0..4)
+                    .map(|j| {
+                        let (x, y) = (i as f64 / 3.0, j as f64 / 3.0);
+                        Point3::new(x, y, height(x, y))
+                    })
+                    .collect()
+            })
+            .collect();
+        if planar {
+            for (i, j) in [(0, 0), (0, 1), (1, 1), (2, 0)] {
+                grid[i][j].z = 0.0;
+            }
+        }
+        grid[1][0] = grid[0][0];
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+        let bezier = BezierSurface::new(grid.clone()).unwrap();
+        let bspline =
+            BSplineSurface::new((3, 3), (knots.clone(), knots.clone()), grid.clone()).unwrap();
+        let nurbs =
+            NurbsSurface::new((3, 3), (knots.clone(), knots), grid, vec![vec![1.0; 4]; 4]).unwrap();
+        let surfaces: [(&str, &dyn Surface); 3] = [
+            ("Bezier", &bezier),
+            ("B-spline", &bspline),
+            ("NURBS", &nurbs),
+        ];
+        for (name, surface) in surfaces {
+            let sampled: Vec<Vector3<f64>> = (1..10)
+                .map(|k| {
+                    let angle = std::f64::consts::FRAC_PI_2 * k as f64 / 10.0;
+                    let n = surface.normal(1e-6 * angle.cos(), 1e-6 * angle.sin());
+                    n.expect("a normal off the corner").into_inner()
+                })
+                .collect();
+            let agree = sampled.iter().all(|n| (n - sampled[0]).norm() < 1e-4);
+            assert_eq!(agree, planar, "{name}: {sampled:?}");
+            match surface.normal(0.0, 0.0) {
+                Some(corner) => {
+                    assert!(planar, "{name}: a normal {corner:?} at a cone point");
+                    for n in &sampled {
+                        let gap = (corner.into_inner() - n).norm();
+                        assert!(gap < 1e-4, "{name}: {corner:?} vs {n:?}");
+                    }
+                }
+                None => assert!(!planar, "{name}: no normal where the limit exists"),
+            }
+        }
+    }
+}
