@@ -133,13 +133,14 @@ pub(super) fn polish(
         if !((-SLACK..=1.0 + SLACK).contains(&s) && (-SLACK..=1.0 + SLACK).contains(&t)) {
             continue;
         }
+        let past_side = !((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
         let jet = match last {
             Some((sc, tc, jet)) if (sc, tc) == (s, t) => jet,
             _ => jet(patch, cols, s, t),
         };
         if let Some(hit) = accept(patch, k, f, s, t, &jet) {
-            return Some(hit);
+            return Some(PatchHit { past_side, ..hit });
         }
     }
     None
@@ -173,6 +174,7 @@ pub(super) fn accept(
         t: along / f.dn,
         u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
         v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+        past_side: false,
     })
 }
 

@@ -152,6 +152,10 @@ pub(crate) struct PatchHit {
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) v: f64,
+    /// Newton's method ended past the patch's side (by at most its
+    /// slack) and `(u, v)` was moved onto it: the root may lie on the
+    /// neighbouring patch, where it can be found without that move.
+    pub(crate) past_side: bool,
 }
 
 impl PatchHit {

@@ -50,12 +50,13 @@
 
 use super::clip::{CLIP_ENOUGH, clip, restrict_lines};
 use super::krawczyk::{TRY_UNIQUE, unique_root};
-use super::newton_polish::{Frame, SLACK, polish};
+use super::newton_polish::{Frame, SLACK, jet, polish};
 use super::patch::{Patch, PatchHit};
 use super::projection_certificate::{ProjectionCertificate, Settled};
 use crate::ray::bvh::BoxRay;
 use crate::ray::wide_bvh::WideBvh;
 use crate::{Ray, Tolerance};
+use nalgebra::Vector3;
 use std::ops::ControlFlow;
 
 /// Boxes narrower than this (in a patch's own parameters, both sides) are
@@ -119,8 +120,104 @@ pub(crate) fn intersect(
             }
             ControlFlow::Continue(t_best)
         });
-    best
+    match best {
+        Some(hit) if hit.past_side => Some(across_the_side(set, ray, &frame, t_max, hit)),
+        _ => best,
+    }
 }
+
+/// A hit whose Newton iterate ended just past its patch's side, moved onto
+/// that side, lies off the ray by up to that gap times the surface's speed
+/// (about 1e-12 of the size). The root is then inside a neighbouring piece
+/// (of the same patch, or of the patch across a shared edge): the pieces
+/// the ray enters within `NEIGHBOUR_WINDOW` of the hit are polished, and a
+/// hit strictly inside one of them, at the same root (within
+/// `SAME_ROOT`), replaces it.
+fn across_the_side(
+    set: PatchSet<'_>,
+    ray: &Ray,
+    frame: &Frame,
+    t_max: f64,
+    hit: PatchHit,
+) -> PatchHit {
+    let cols = set.degrees.1 + 1;
+    let window = NEIGHBOUR_WINDOW * set.scale.max(frame.o.amax()) / frame.dn;
+    let same = SAME_ROOT * set.scale.max(frame.o.amax()) / frame.dn;
+    let (lo, hi) = (
+        (hit.t - window).max(frame.t_floor),
+        (hit.t + window).min(t_max),
+    );
+    let point = ray.at(hit.t).coords;
+    let mut better = hit;
+    set.tree.traverse(&BoxRay::new(ray), lo, hi, |j, t_best| {
+        if j != hit.patch && better.past_side {
+            // Newton starts at the point of the piece's sides nearest the
+            // hit (the root lies just inside a side), so that it finds
+            // this root and not another.
+            let piece = &set.patches[j];
+            let start = nearest_on_sides(piece, cols, &point);
+            let at = ((start.0, start.0), (start.1, start.1));
+            let found = polish(piece, j, cols, frame, at);
+            if let Some(inside) = found.filter(|h| !h.past_side && (h.t - hit.t).abs() <= same) {
+                better = inside;
+            }
+        }
+        ControlFlow::Continue(t_best)
+    });
+    better
+}
+
+/// The point `(s, t)` of the sides of `piece` (`cols` points a row)
+/// nearest to `point`: the nearest of [`SIDE_SAMPLES`] samples a side,
+/// refined by Newton's method on `(C(τ) − point)·C′(τ) = 0` along its side.
+fn nearest_on_sides(piece: &Patch, cols: usize, point: &Vector3<f64>) -> (f64, f64) {
+    let at = |s: f64, t: f64| {
+        let [h, hs, ht] = jet(piece, cols, s, t);
+        let x = h.wp / h.w;
+        (x, (hs.wp - x * hs.w) / h.w, (ht.wp - x * ht.w) / h.w)
+    };
+    let mut best = ((0.5, 0.5), f64::INFINITY);
+    // Each side: a fixed parameter and which one runs.
+    for (fixed, along_s) in [(0.0, false), (1.0, false), (0.0, true), (1.0, true)] {
+        let st = |tau: f64| if along_s { (tau, fixed) } else { (fixed, tau) };
+        let mut tau = 0.0;
+        let mut gap = f64::INFINITY;
+        for k in 0..=SIDE_SAMPLES {
+            let x = k as f64 / SIDE_SAMPLES as f64;
+            let (s, t) = st(x);
+            let d = (at(s, t).0 - point).norm();
+            if d < gap {
+                (gap, tau) = (d, x);
+            }
+        }
+        for _ in 0..SIDE_STEPS {
+            let (s, t) = st(tau);
+            let (x, xs, xt) = at(s, t);
+            let tangent = if along_s { xs } else { xt };
+            let slope = tangent.norm_squared();
+            if slope.is_nan() || slope <= 0.0 {
+                break;
+            }
+            tau = (tau - (x - point).dot(&tangent) / slope).clamp(0.0, 1.0);
+        }
+        let (s, t) = st(tau);
+        let d = (at(s, t).0 - point).norm();
+        if d < best.1 {
+            best = ((s, t), d);
+        }
+    }
+    best.0
+}
+
+/// Samples a side of a piece for [`nearest_on_sides`], and Newton steps after.
+const SIDE_SAMPLES: usize = 16;
+const SIDE_STEPS: usize = 6;
+/// How far along the ray (relative to the scale) pieces are looked for
+/// around a hit found past its piece's side.
+const NEIGHBOUR_WINDOW: f64 = 1e-6;
+/// How close (relative to the scale) a neighbour's hit must be to stand
+/// for the same root.
+const SAME_ROOT: f64 = 1e-9;
 
 /// The clipping search's scratch space for one ray, made when a piece
 /// first needs it (most rays settle every piece they reach without it):
@@ -278,6 +375,7 @@ pub(super) fn clip_search(
                         t: t_hit,
                         u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
                         v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
+                        past_side: false,
                     });
                 }
                 continue 'cells;
@@ -343,6 +441,7 @@ pub(super) fn clip_search(
                         t: c[2] / c[3] / dn,
                         u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
                         v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
+                        past_side: false,
                     });
                 }
                 continue 'cells;
@@ -365,6 +464,7 @@ pub(super) fn clip_search(
                         t: c[2] / c[3] / dn,
                         u: patch.u.0 + (patch.u.1 - patch.u.0) * s_at,
                         v: patch.v.0 + (patch.v.1 - patch.v.0) * t_at,
+                        past_side: false,
                     });
                 }
             }
