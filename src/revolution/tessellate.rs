@@ -39,7 +39,8 @@ impl<C: Curve<2>> Revolution<C> {
     ///
     /// Vertices on the axis (poles) are shared by their ring; triangles that
     /// collapse there are left out. The seam `θ = 0 ≡ 2π` has duplicate
-    /// vertices so that `(u, v)` stay continuous.
+    /// vertices so that `(u, v)` stay continuous; [`Mesh::welded`] merges
+    /// them and each pole's ring into one vertex, for a watertight mesh.
     ///
     /// # Errors
     /// [`Error::InvalidTolerance`]; [`Error::ToleranceTooSmall`] below what

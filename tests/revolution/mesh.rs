@@ -35,7 +35,8 @@
 //! one still `#[ignore]`d documents a known limitation (crease normals).
 
 use revolve::nalgebra::{Point2, Point3, Unit, Vector2, Vector3};
-use revolve::{BSpline, Bezier, Curve, Error, Flattening, Mesh, Revolution, Surface};
+use revolve::{BSpline, Bezier, Curve, Error, Flattening, Mesh, Nurbs, Revolution, Surface};
+use revolve_testkit as common;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 
@@ -1394,6 +1395,142 @@ fn crease_normals_face_their_triangles() {
         assert!(
             cos > 0.1,
             "triangle {k} {t:?}: cos(triangle normal, vertex normals) = {cos:e}"
+        );
+    }
+}
+
+/// Every directed edge of `mesh` and how many triangles use it.
+fn directed_edges(mesh: &Mesh) -> HashMap<(u32, u32), usize> {
+    let mut edges = HashMap::new();
+    for &[a, b, c] in &mesh.triangles {
+        for edge in [(a, b), (b, c), (c, a)] {
+            *edges.entry(edge).or_default() += 1;
+        }
+    }
+    edges
+}
+
+/// `Mesh::welded` on closed surfaces of revolution (the NURBS unit sphere,
+/// the torus, the wine glass, closed at both poles): no two vertices share
+/// a position, every edge is used once in each direction (watertight and
+/// consistently oriented), Euler's formula holds (genus 0 for the sphere
+/// and the glass, 1 for the torus), and every welded triangle is one of
+/// the mesh's, with the same positions in the same order.
+#[test]
+fn welded_closed_revolutions_are_watertight() {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let sphere = Revolution::new(Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2).unwrap());
+    let torus = Revolution::new(Nurbs::arc(Point2::new(1.0, 0.0), 0.25, -PI, PI).unwrap());
+    let glass = Revolution::new(common::wine_glass());
+    // Each surface with its Euler characteristic (genus 0: 2, the torus 0).
+    let cases = [("sphere", &sphere, 2), ("torus", &torus, 0)];
+    let glass_case = [("wine glass", &glass, 2)];
+    let nurbs = cases.iter().map(|&(n, s, e)| (n, Meshing::Nurbs(s), e));
+    let all = nurbs.chain(
+        glass_case
+            .iter()
+            .map(|&(n, s, e)| (n, Meshing::BSpline(s), e)),
+    );
+    for (name, surface, euler) in all {
+        for tolerance in [1e-2, 1e-3] {
+            let mesh = surface.tessellate(tolerance);
+            let welded = mesh.welded();
+            assert_eq!(welded.bound, mesh.bound);
+            let mut seen = std::collections::HashSet::new();
+            for p in &welded.positions {
+                let key = p.coords.map(|c| (c + 0.0).to_bits());
+                assert!(seen.insert(key), "{name}: position {p:?} twice");
+            }
+            let edges = directed_edges(&welded);
+            for (&(a, b), &count) in &edges {
+                assert_eq!(
+                    count, 1,
+                    "{name} at {tolerance:e}: edge {a} → {b} used {count} times"
+                );
+                assert_eq!(
+                    edges.get(&(b, a)),
+                    Some(&1),
+                    "{name} at {tolerance:e}: edge {a} → {b} has no opposite"
+                );
+            }
+            let (v, e, f) = (
+                welded.positions.len() as i64,
+                edges.len() as i64 / 2,
+                welded.triangles.len() as i64,
+            );
+            assert_eq!(
+                v - e + f,
+                euler,
+                "{name} at {tolerance:e}: V {v}, E {e}, F {f}"
+            );
+            // Each welded triangle is one of the mesh's, positions kept.
+            let original: std::collections::HashSet<_> = mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| mesh.positions[i as usize].coords.map(f64::to_bits)))
+                .collect();
+            for t in &welded.triangles {
+                let corners = t.map(|i| welded.positions[i as usize].coords.map(f64::to_bits));
+                assert!(original.contains(&corners), "{name}: a new triangle {t:?}");
+            }
+        }
+    }
+}
+
+/// A NURBS or a B-spline revolution, to tessellate either.
+enum Meshing<'a> {
+    Nurbs(&'a Revolution<Nurbs<2>>),
+    BSpline(&'a Revolution<BSpline<2>>),
+}
+
+impl Meshing<'_> {
+    fn tessellate(&self, tolerance: f64) -> Mesh {
+        match self {
+            Meshing::Nurbs(s) => s.tessellate(tolerance),
+            Meshing::BSpline(s) => s.tessellate(tolerance),
+        }
+        .unwrap()
+    }
+}
+
+/// `Mesh::write_stl`: one facet a triangle with its three corners exactly
+/// (parsed back) and a unit normal along `(b − a) × (c − a)`.
+#[test]
+fn stl_output_holds_every_triangle() {
+    let mesh = Revolution::new(common::vase()).tessellate(1e-2).unwrap();
+    let mut out = Vec::new();
+    mesh.write_stl(&mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.starts_with("solid revolve\n") && text.ends_with("endsolid revolve\n"));
+    let numbers = |line: &str| -> Vec<f64> {
+        line.split_whitespace()
+            .filter_map(|w| w.parse().ok())
+            .collect()
+    };
+    let normals: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("facet normal"))
+        .map(numbers)
+        .collect();
+    let vertices: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("vertex"))
+        .map(numbers)
+        .collect();
+    assert_eq!(normals.len(), mesh.triangles.len());
+    assert_eq!(vertices.len(), 3 * mesh.triangles.len());
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        let corners = t.map(|i| mesh.positions[i as usize]);
+        for (c, p) in corners.iter().enumerate() {
+            assert_eq!(vertices[3 * k + c], vec![p.x, p.y, p.z], "triangle {k}");
+        }
+        let n = (corners[1] - corners[0])
+            .cross(&(corners[2] - corners[0]))
+            .normalize();
+        let written = Vector3::new(normals[k][0], normals[k][1], normals[k][2]);
+        assert!(
+            (written - n).norm() < 1e-12,
+            "triangle {k}: {written:?} vs {n:?}"
         );
     }
 }
