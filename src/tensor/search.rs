@@ -366,18 +366,7 @@ pub(super) fn clip_search(
                 }
             }
             if image <= frame.acceptance.distance {
-                let c = work[0];
-                let off = c[0].hypot(c[1]) / c[3];
-                let t_hit = c[2] / c[3] / dn;
-                if frame.acceptance.accepts(off) {
-                    nearest.offer(PatchHit {
-                        patch: k,
-                        t: t_hit,
-                        u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
-                        v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
-                        past_side: false,
-                    });
-                }
+                decide_by_corner(&mut nearest, patch, k, work[0], &cell, frame);
                 continue 'cells;
             }
             // A box that holds exactly one root (Krawczyk's test) is
@@ -433,17 +422,7 @@ pub(super) fn clip_search(
             // any other is halved in the wider parameter, the search going
             // on with the nearer half and leaving the other for later.
             if !(whole || thin) && extent(work, noise()) <= frame.acceptance.distance {
-                let c = work[0];
-                let off = c[0].hypot(c[1]) / c[3];
-                if frame.acceptance.accepts(off) {
-                    nearest.offer(PatchHit {
-                        patch: k,
-                        t: c[2] / c[3] / dn,
-                        u: patch.u.0 + (patch.u.1 - patch.u.0) * cell.s.0,
-                        v: patch.v.0 + (patch.v.1 - patch.v.0) * cell.t.0,
-                        past_side: false,
-                    });
-                }
+                decide_by_corner(&mut nearest, patch, k, work[0], &cell, frame);
                 continue 'cells;
             }
             // A box all of whose image lies within the acceptance of the
@@ -456,16 +435,10 @@ pub(super) fn clip_search(
             if lateral(work) + noise() <= frame.acceptance.distance {
                 let cols = q + 1;
                 for (i, j) in [(0, 0), (0, q), (p, 0), (p, q)] {
-                    let c = work[i * cols + j];
                     let s_at = if i == 0 { cell.s.0 } else { cell.s.1 };
                     let t_at = if j == 0 { cell.t.0 } else { cell.t.1 };
-                    nearest.offer(PatchHit {
-                        patch: k,
-                        t: c[2] / c[3] / dn,
-                        u: patch.u.0 + (patch.u.1 - patch.u.0) * s_at,
-                        v: patch.v.0 + (patch.v.1 - patch.v.0) * t_at,
-                        past_side: false,
-                    });
+                    let c = work[i * cols + j];
+                    nearest.offer(corner_hit(patch, k, c, (s_at, t_at), dn));
                 }
             }
             let split_s = ws >= wt;
@@ -509,6 +482,38 @@ pub(super) fn clip_search(
         }
     }
     nearest.hit
+}
+
+/// The hit at the corner `(s, t)` (in the patch's own parameters) of a
+/// box whose control point there, `c = (α, β, γ, w)`, is that corner's
+/// surface point: at `t = γ/(w·|d|)`.
+fn corner_hit(patch: &Patch, k: usize, c: [f64; 4], (s, t): (f64, f64), dn: f64) -> PatchHit {
+    PatchHit {
+        patch: k,
+        t: c[2] / c[3] / dn,
+        u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
+        v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+        past_side: false,
+    }
+}
+
+/// A box whose image is within the acceptance of one point, decided by its
+/// first corner (control point `c`): that surface point is the hit if it
+/// is within the acceptance of the ray; if the box held a root, the corner
+/// would be within the box's extent of it, so a corner farther off rules
+/// a root out.
+fn decide_by_corner(
+    nearest: &mut Nearest,
+    patch: &Patch,
+    k: usize,
+    c: [f64; 4],
+    cell: &SearchBox,
+    frame: &Frame,
+) {
+    let off = c[0].hypot(c[1]) / c[3];
+    if frame.acceptance.accepts(off) {
+        nearest.offer(corner_hit(patch, k, c, (cell.s.0, cell.t.0), frame.dn));
+    }
 }
 
 /// The nearest hit so far and the window of ray parameters a new one must
