@@ -16,24 +16,10 @@ pub(super) fn render(c: &mut Cursor<'_>) -> Result<RenderSettings> {
     while let Some(key) = c.key(BLOCK, open)? {
         match key.text {
             "samples" => c.field(&mut settings.samples, key, BLOCK, |c, w| {
-                let (samples, at) = c.whole(w, 1)?;
-                if samples > MAX_SAMPLES {
-                    return Err(c.error(
-                        at,
-                        format!("'samples' is {samples}, more than the largest, {MAX_SAMPLES}"),
-                    ));
-                }
-                Ok(samples)
+                whole_up_to(c, w, 1, MAX_SAMPLES)
             })?,
             "maxDepth" => c.field(&mut settings.max_depth, key, BLOCK, |c, w| {
-                let (depth, at) = c.whole(w, 0)?;
-                if depth > MAX_DEPTH {
-                    return Err(c.error(
-                        at,
-                        format!("'maxDepth' is {depth}, more than the largest, {MAX_DEPTH}"),
-                    ));
-                }
-                Ok(depth)
+                whole_up_to(c, w, 0, MAX_DEPTH)
             })?,
             "shadows" => c.field(&mut settings.shadows, key, BLOCK, |c, w| {
                 c.choice(w, &[("true", true), ("false", false)])
@@ -54,4 +40,17 @@ pub(super) fn render(c: &mut Cursor<'_>) -> Result<RenderSettings> {
         }
     }
     Ok(settings)
+}
+
+/// A whole number from `least` to `largest` (the value of the key `what`),
+/// an error at the number beyond.
+fn whole_up_to(c: &mut Cursor<'_>, what: &str, least: u32, largest: u32) -> Result<u32> {
+    let (value, at) = c.whole(what, least)?;
+    if value > largest {
+        return Err(c.error(
+            at,
+            format!("'{what}' is {value}, more than the largest, {largest}"),
+        ));
+    }
+    Ok(value)
 }
