@@ -125,9 +125,6 @@ pub fn bernstein(n: usize, i: usize, t: f64) -> f64 {
     } else {
         1.0
     };
-    if n == 0 {
-        return 1.0;
-    }
     if t.is_infinite() {
         return sign * f64::INFINITY;
     }

@@ -210,18 +210,18 @@ impl PatchTable {
         // centre, N₁ = du(S_uu×S_v + S_u×S_uv) + dv(S_uv×S_v + S_u×S_vv).
         let dir_u = (0.5 * (du.0 + du.1) - u) / (du.1 - du.0);
         let dir_v = (0.5 * (dv.0 + dv.1) - v) / (dv.1 - dv.0);
+        let wide = (du.1 - du.0).max(dv.1 - dv.0);
         if let Some(limit) = corner_limit(
             [u == du.0 || u == du.1, v == dv.0 || v == dv.1],
             [su, sv],
             [d[2][0], d[1][1], d[0][2]],
             [dir_u.signum(), dir_v.signum()],
-            negligible / wide_of(du, dv),
+            negligible / wide,
         ) {
             return limit;
         }
         let n1 = (d[2][0].cross(&sv) + su.cross(&d[1][1])) * dir_u
             + (d[1][1].cross(&sv) + su.cross(&d[0][2])) * dir_v;
-        let wide = (du.1 - du.0).max(dv.1 - dv.0);
         if n1.norm() * wide > negligible {
             let n1 = unit_direction(n1)?;
             // At a collapsed edge the limit is a tangent plane only if every
@@ -254,53 +254,7 @@ impl PatchTable {
         }
         if converged { last } else { None }
     }
-}
 
-/// The widest side of the domain `du × dv`.
-fn wide_of(du: (f64, f64), dv: (f64, f64)) -> f64 {
-    (du.1 - du.0).max(dv.1 - dv.0)
-}
-
-/// The normal at a corner of the domain where one first partial vanishes
-/// but the edges do not collapse (a corner control point doubled, `P₁₀ =
-/// P₀₀`): approaching along the inward direction `(a, b)` (signs `inward`),
-/// with `S_u = 0` the normal is `N ≈ r·(a S_uu + b S_uv) × S_v`, a
-/// combination of `A = S_uu × S_v` (along the edge `v` fixed) and
-/// `B = S_uv × S_v` (along the edge `u` fixed); with `S_v = 0`,
-/// `A = S_u × S_uv`, `B = S_u × S_vv`. The limit is independent of the
-/// direction exactly when `A` and `B` point the same way: it is then
-/// `Some(that direction)`; `Some(None)` when they do not (a cone point).
-/// `None` (not decided here) off the corners, when neither or both
-/// partials vanish, or when `A` or `B` vanishes too (a collapsed edge,
-/// which [`PatchTable::edge_is_flat`] decides).
-fn corner_limit(
-    [on_u_end, on_v_end]: [bool; 2],
-    [su, sv]: [Vector3<f64>; 2],
-    [suu, suv, svv]: [Vector3<f64>; 3],
-    [inward_u, inward_v]: [f64; 2],
-    negligible: f64,
-) -> Option<Option<Unit<Vector3<f64>>>> {
-    let tiny = |x: Vector3<f64>, y: Vector3<f64>| x.norm() <= 1e-7 * y.norm();
-    if !(on_u_end && on_v_end) || tiny(su, sv) == tiny(sv, su) {
-        return None;
-    }
-    let (a, b) = if tiny(su, sv) {
-        (suu.cross(&sv) * inward_u, suv.cross(&sv) * inward_v)
-    } else {
-        (su.cross(&suv) * inward_u, su.cross(&svv) * inward_v)
-    };
-    if a.norm() <= negligible || b.norm() <= negligible {
-        return None;
-    }
-    let same_way = a.dot(&b) > 0.0 && a.cross(&b).norm() <= 1e-7 * a.norm() * b.norm();
-    Some(if same_way {
-        unit_direction(a / a.norm() + b / b.norm())
-    } else {
-        None
-    })
-}
-
-impl PatchTable {
     /// At a point `(u, v)` on an edge of the domain where that edge is
     /// collapsed (the partial along it vanishes), whether the first
     /// differences of the control net leaving the edge (they span the
@@ -400,6 +354,46 @@ impl PatchTable {
         boxed.expand(pad)
     }
 }
+
+/// The normal at a corner of the domain where one first partial vanishes
+/// but the edges do not collapse (a corner control point doubled, `P₁₀ =
+/// P₀₀`): approaching along the inward direction `(a, b)` (signs `inward`),
+/// with `S_u = 0` the normal is `N ≈ r·(a S_uu + b S_uv) × S_v`, a
+/// combination of `A = S_uu × S_v` (along the edge `v` fixed) and
+/// `B = S_uv × S_v` (along the edge `u` fixed); with `S_v = 0`,
+/// `A = S_u × S_uv`, `B = S_u × S_vv`. The limit is independent of the
+/// direction exactly when `A` and `B` point the same way: it is then
+/// `Some(that direction)`; `Some(None)` when they do not (a cone point).
+/// `None` (not decided here) off the corners, when neither or both
+/// partials vanish, or when `A` or `B` vanishes too (a collapsed edge,
+/// which [`PatchTable::edge_is_flat`] decides).
+fn corner_limit(
+    [on_u_end, on_v_end]: [bool; 2],
+    [su, sv]: [Vector3<f64>; 2],
+    [suu, suv, svv]: [Vector3<f64>; 3],
+    [inward_u, inward_v]: [f64; 2],
+    negligible: f64,
+) -> Option<Option<Unit<Vector3<f64>>>> {
+    let tiny = |x: Vector3<f64>, y: Vector3<f64>| x.norm() <= 1e-7 * y.norm();
+    if !(on_u_end && on_v_end) || tiny(su, sv) == tiny(sv, su) {
+        return None;
+    }
+    let (a, b) = if tiny(su, sv) {
+        (suu.cross(&sv) * inward_u, suv.cross(&sv) * inward_v)
+    } else {
+        (su.cross(&suv) * inward_u, su.cross(&svv) * inward_v)
+    };
+    if a.norm() <= negligible || b.norm() <= negligible {
+        return None;
+    }
+    let same_way = a.dot(&b) > 0.0 && a.cross(&b).norm() <= 1e-7 * a.norm() * b.norm();
+    Some(if same_way {
+        unit_direction(a / a.norm() + b / b.norm())
+    } else {
+        None
+    })
+}
+
 /// Checks that the first partials of every rational patch stay within
 /// [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE), as the rational curves check
 /// their pieces: along each row (in `v`) and column (in `u`) of a patch net,
