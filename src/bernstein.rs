@@ -423,25 +423,32 @@ pub fn bernstein_sum<T: Coefficient>(c: &[T], t: f64) -> Option<T> {
 }
 
 /// Converts Bernstein coefficients to power-basis (monomial) coefficients
-/// `aⱼ = C(n, j) Σᵢ₌₀ʲ (−1)ʲ⁻ⁱ C(j, i) cᵢ`, so that `p(t) = Σ aⱼ tʲ`.
+/// `aⱼ = C(n, j) Σᵢ₌₀ʲ (−1)ʲ⁻ⁱ C(j, i) cᵢ`, so that `p(t) = Σ aⱼ tʲ`; the
+/// `C(j, i)` rows by Pascal's rule, `O(n²)` operations in all.
 ///
 /// The conversion is ill-conditioned for high degree (the `aⱼ` grow like
 /// `2ⁿ` and alternate in sign); it exists to document that and as a speed
-/// comparison for [`horner`].
+/// comparison for [`horner`]. Beyond degree about 1 000 the terms overflow
+/// `f64` (infinite, or NaN where two infinities meet): the power basis cannot
+/// hold such a polynomial.
 pub fn to_power_basis<T: Coefficient>(c: &[T]) -> Vec<T> {
-    let Some(n) = c.len().checked_sub(1) else {
-        return Vec::new();
-    };
-    (0..=n)
-        .map(|j| {
-            let mut acc = c[0] * 0.0;
-            for (i, &ci) in c.iter().enumerate().take(j + 1) {
-                let sign = if (j - i) % 2 == 0 { 1.0 } else { -1.0 };
-                acc = acc + ci * (sign * binomial(j, i));
-            }
-            acc * binomial(n, j)
-        })
-        .collect()
+    let n = c.len().saturating_sub(1);
+    // Row j of Pascal's triangle, C(j, 0) … C(j, j).
+    let mut pascal: Vec<f64> = Vec::with_capacity(c.len());
+    let mut a = Vec::with_capacity(c.len());
+    for j in 0..c.len() {
+        pascal.push(1.0);
+        for i in (1..j).rev() {
+            pascal[i] += pascal[i - 1];
+        }
+        let mut acc = c[0] * 0.0;
+        for (i, (&ci, &binom)) in c.iter().zip(&pascal).enumerate() {
+            let sign = if (j - i) % 2 == 0 { 1.0 } else { -1.0 };
+            acc = acc + ci * (sign * binom);
+        }
+        a.push(acc * binomial(n, j));
+    }
+    a
 }
 
 /// Evaluates the power-basis polynomial `Σ aⱼ tʲ` by Horner's rule.

@@ -224,6 +224,14 @@ pub enum Error {
         /// The largest tolerance accepted.
         max: f64,
     },
+    /// A patch tree deeper than the Newton intersector builds
+    /// ([`NewtonIntersector::try_new`](crate::NewtonIntersector::try_new)).
+    DepthTooLarge {
+        /// The depth that was asked for.
+        depth: u32,
+        /// The deepest tree built.
+        max: u32,
+    },
     /// An iteration cap is zero or larger than the solver accepts.
     InvalidIterations {
         /// The cap that was given.
@@ -487,6 +495,11 @@ impl fmt::Display for Error {
             } => write!(
                 f,
                 "iteration cap {max_iterations} is outside the accepted range 1 to {max}"
+            ),
+            Error::DepthTooLarge { depth, max } => write!(
+                f,
+                "a patch tree of depth {depth} is deeper than the {max} levels built \
+                 (2^{max} leaves)"
             ),
             Error::NotPiecewisePolynomial => write!(
                 f,

@@ -43,8 +43,8 @@ pub(crate) use homogeneous::{Homogeneous, quotient_rule};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
 pub use query::{CurveProjector, NearestPoint};
-pub(crate) use rational_bezier::validate_weights;
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
+pub(crate) use rational_bezier::{normalized_weights, validate_weights};
 
 pub use crate::limits::MAX_DERIVATIVE;
 

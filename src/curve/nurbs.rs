@@ -22,7 +22,8 @@ use super::knots::{
 use super::pieces::PieceTable;
 use super::{
     Homogeneous, MAX_DERIVATIVE, NaturalSize, check_derivatives, clamp_to_box, clamp_to_domain,
-    point_bounds, quotient_rule, tangent_from_derivatives, validate_points, validate_weights,
+    normalized_weights, point_bounds, quotient_rule, tangent_from_derivatives, validate_points,
+    validate_weights,
 };
 use crate::bernstein::lerp;
 use crate::scratch::with_scratch;
@@ -134,7 +135,7 @@ impl<const D: usize> Nurbs<D> {
         validate_points(&points)?;
         validate_knots(degree, &knots, points.len())?;
         validate_weights(&weights, points.len())?;
-        Self::from_checked_parts(degree, knots, points, weights)
+        Self::from_checked_parts(degree, knots, points, normalized_weights(weights))
     }
 
     /// Builds the curve from valid parts and checks its pieces' derivatives
@@ -224,7 +225,10 @@ impl<const D: usize> Nurbs<D> {
         &self.points
     }
 
-    /// The weights, as given (one per control point).
+    /// The weights, as given (one per control point); weights that all lie
+    /// below `2⁻⁵⁰⁰` or above `2⁵⁰⁰` are scaled by one power of two at
+    /// construction (exactly, the curve unchanged) so that the largest is in
+    /// `[1, 2)`.
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }

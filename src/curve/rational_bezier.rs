@@ -121,6 +121,27 @@ pub(crate) fn validate_weights(weights: &[f64], count: usize) -> Result<(), Erro
     Ok(())
 }
 
+/// Weights whose largest lies outside `[2⁻⁵⁰⁰, 2⁵⁰⁰]` scaled by one power of
+/// two (exactly: the product of a float and a power of two is exact while it
+/// neither overflows nor underflows) so that the largest is in `[1, 2)`; other
+/// weights unchanged. A rational curve does not change when all its weights
+/// are multiplied by one factor, and subnormal weights (a few bits each) would
+/// otherwise lose what knot insertion and elevation compute from them.
+pub(crate) fn normalized_weights(mut weights: Vec<f64>) -> Vec<f64> {
+    const EXTREME: f64 = 500.0;
+    let max = weights.iter().fold(0.0_f64, |m, &w| m.max(w));
+    if max > 0.0 && max.is_finite() && max.log2().abs() > EXTREME {
+        // 2^−e in two exact factors (2^±1074 alone is out of range).
+        let e = max.log2().floor() as i32;
+        let (a, b) = (-e / 2, -e - (-e / 2));
+        let (fa, fb) = (2.0_f64.powi(a), 2.0_f64.powi(b));
+        for w in &mut weights {
+            *w = *w * fa * fb;
+        }
+    }
+    weights
+}
+
 impl<const D: usize> RationalBezier<D> {
     /// A rational Bézier curve of the given control points and weights
     /// (degree = count − 1).
@@ -134,7 +155,7 @@ impl<const D: usize> RationalBezier<D> {
     pub fn new(points: Vec<Point<f64, D>>, weights: Vec<f64>) -> Result<Self, Error> {
         validate_points(&points)?;
         validate_weights(&weights, points.len())?;
-        let curve = Self::from_valid_parts(points, weights);
+        let curve = Self::from_valid_parts(points, normalized_weights(weights));
         let coords: Vec<SVector<f64, D>> = curve.homogeneous.iter().map(|h| h.wp).collect();
         check_derivatives(&coords, 1.0)?;
         Ok(curve)
@@ -161,7 +182,9 @@ impl<const D: usize> RationalBezier<D> {
         &self.points
     }
 
-    /// The weights, as given.
+    /// The weights, as given; weights that all lie below `2⁻⁵⁰⁰` or above
+    /// `2⁵⁰⁰` are scaled by one power of two at construction (exactly, the
+    /// curve unchanged) so that the largest is in `[1, 2)`.
     pub fn weights(&self) -> &[f64] {
         &self.weights
     }

@@ -11,6 +11,7 @@ use crate::bernstein::{Coefficient, lerp};
 use crate::curve::{
     Homogeneous, boehm_insert, check_derivative_points, knot_to_insert, validate_knots,
 };
+use crate::limits::MAX_COORDINATE;
 use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
 use nalgebra::{Point1, Point3, Unit, Vector3};
 
@@ -286,10 +287,10 @@ impl TensorSpline {
         validate_knots(degrees.1, &knots.1, cols)?;
         let rational = weights.is_some();
         let weights = match weights {
-            Some(w) => {
-                flatten_weights(&w, rows, cols)?;
-                w
-            }
+            Some(w) => flatten_weights(&w, rows, cols)?
+                .chunks(cols)
+                .map(<[f64]>::to_vec)
+                .collect(),
             None => vec![vec![1.0; cols]; rows],
         };
         Self::from_checked_parts(degrees, knots, points, weights, rational)
@@ -350,14 +351,22 @@ impl TensorSpline {
     /// scaled).
     pub(crate) fn patch_grid(&self, patch: &Patch) -> (Vec<Vec<Point3<f64>>>, Vec<Vec<f64>>) {
         let cols = self.degrees.1 + 1;
+        // The net's points are convex combinations of the grid's, whose
+        // coordinates are within MAX_COORDINATE: so are theirs, up to the
+        // rounding the clamp takes back (so the nets pass the constructors).
+        let within = |p: Point3<f64>| p.map(|c| c.clamp(-MAX_COORDINATE, MAX_COORDINATE));
         let mut points = Vec::with_capacity(self.degrees.0 + 1);
         let mut weights = Vec::with_capacity(self.degrees.0 + 1);
         for row in patch.net.chunks(cols) {
             if self.rational {
-                points.push(row.iter().map(|h| Point3::from(h.wp / h.w)).collect());
+                points.push(
+                    row.iter()
+                        .map(|h| within(Point3::from(h.wp / h.w)))
+                        .collect(),
+                );
                 weights.push(row.iter().map(|h| h.w * self.scale).collect());
             } else {
-                points.push(row.iter().map(|h| Point3::from(h.wp)).collect());
+                points.push(row.iter().map(|h| within(Point3::from(h.wp))).collect());
                 weights.push(vec![1.0; cols]);
             }
         }

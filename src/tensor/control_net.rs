@@ -3,7 +3,7 @@
 //! back.
 
 use crate::Error;
-use crate::curve::{validate_points, validate_weights};
+use crate::curve::{normalized_weights, validate_points, validate_weights};
 use nalgebra::Point3;
 
 /// Checks a grid of control points and flattens it row-major.
@@ -58,7 +58,7 @@ pub(crate) fn flatten_weights(
     }
     let flat: Vec<f64> = weights.iter().flatten().copied().collect();
     validate_weights(&flat, rows * cols)?;
-    Ok(flat)
+    Ok(normalized_weights(flat))
 }
 /// A power of two near the largest weight: dividing by it is exact and keeps
 /// `w·P` in range.

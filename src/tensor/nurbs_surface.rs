@@ -123,7 +123,10 @@ impl NurbsSurface {
         &self.core.points
     }
 
-    /// The weights, as given (all ones for a converted [`BSplineSurface`]).
+    /// The weights, as given (all ones for a converted [`BSplineSurface`]);
+    /// weights that all lie below `2⁻⁵⁰⁰` or above `2⁵⁰⁰` are scaled by one
+    /// power of two at construction (exactly, the surface unchanged) so that
+    /// the largest is in `[1, 2)`.
     pub fn weights(&self) -> &[Vec<f64>] {
         &self.core.weights
     }

@@ -405,3 +405,403 @@ fn hits_at_shared_edges_lie_on_their_ray() {
     assert!(worst_regular <= 3e-13, "{worst_regular:e} off the ray");
     assert!(worst_pole <= 1e-12, "{worst_pole:e} off the ray at a pole");
 }
+
+/// Clamped knots `0 … 0, 1/(n−p), …, 1 … 1` for `n` points of degree `p`.
+fn clamped_knots(n: usize, p: usize) -> Vec<f64> {
+    let mut knots = vec![0.0; p + 1];
+    knots.extend((1..n - p).map(|i| i as f64 / (n - p) as f64));
+    knots.extend(vec![1.0; p + 1]);
+    knots
+}
+
+/// The fuzzer's misses on large tensor surfaces (a bicubic height field of
+/// size 3e92 among them): rays aimed at interior points of Bézier and NURBS
+/// surfaces of size 1e6 … 1e99, with directions of length 1e-100 … 1e100
+/// whose components differ by up to 1e150, from up to 1e9 sizes away. The
+/// aimed point is on the surface and the crossing there transversal, so a
+/// hit must exist, not beyond it, and on the ray.
+#[test]
+fn tensor_surfaces_up_to_1e100_are_hit_where_aimed() {
+    use revolve::{BezierSurface, NurbsSurface, Surface};
+    use revolve_testkit::Rng;
+    let mut rng = Rng(92);
+    let mut aimed = 0;
+    for case in 0..600 {
+        let scale = if case == 0 {
+            3e92
+        } else {
+            10f64.powf(rng.range(6.0, 99.0))
+        };
+        let height_field = case % 2 == 0;
+        let (rows, cols) = (2 + rng.below(4), 2 + rng.below(4));
+        let grid: Vec<Vec<Point3<f64>>> = (0..rows)
+            .map(|i| {
+                (0..cols)
+                    .map(|j| {
+                        if height_field {
+                            let (x, y) =
+                                (i as f64 / (rows - 1) as f64, j as f64 / (cols - 1) as f64);
+                            Point3::new(x * scale, y * scale, (rng.unit() - 0.5) * scale)
+                        } else {
+                            Point3::new(rng.unit(), rng.unit(), rng.unit()) * scale
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let surface: Box<dyn Fn(f64, f64) -> (Point3<f64>, Option<Vector3<f64>>)>;
+        let intersect: Box<dyn Fn(&Ray) -> Option<revolve::Hit>>;
+        if case % 4 < 2 {
+            let s = std::rc::Rc::new(BezierSurface::new(grid).unwrap());
+            let e = s.clone();
+            surface = Box::new(move |u, v| (e.eval(u, v), e.normal(u, v).map(|n| *n)));
+            intersect = Box::new(move |ray| s.intersect(ray, 0.0, f64::INFINITY));
+        } else {
+            let (p, q) = ((rows - 1).min(3), (cols - 1).min(3));
+            let weights = (0..rows)
+                .map(|_| (0..cols).map(|_| rng.range(0.3, 3.0)).collect())
+                .collect();
+            let knots = (clamped_knots(rows, p), clamped_knots(cols, q));
+            let s = std::rc::Rc::new(NurbsSurface::new((p, q), knots, grid, weights).unwrap());
+            let e = s.clone();
+            surface = Box::new(move |u, v| (e.eval(u, v), e.normal(u, v).map(|n| *n)));
+            intersect = Box::new(move |ray| s.intersect(ray, 0.0, f64::INFINITY));
+        }
+        let (u, v) = (rng.range(0.05, 0.95), rng.range(0.05, 0.95));
+        let (target, Some(normal)) = surface(u, v) else {
+            continue;
+        };
+        let mut dir = Vector3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        for k in 0..3 {
+            if rng.below(2) == 0 {
+                dir[k] *= 10f64.powf(rng.range(-150.0, 0.0));
+            }
+        }
+        dir *= 10f64.powf(rng.range(-100.0, 100.0));
+        let length = dir.norm();
+        if !(length > 1e-140 && length < 1e140) || (dir / length).dot(&normal).abs() < 0.1 {
+            continue;
+        }
+        let back = rng.range(0.5, 3.0) * scale * 10f64.powf(rng.range(0.0, 9.0)) / length;
+        let ray = Ray::new(target - dir * back, dir);
+        let hit = intersect(&ray).unwrap_or_else(|| panic!("case {case}: {ray:?} missed"));
+        assert!(
+            hit.t <= back * (1.0 + 1e-9),
+            "case {case}: hit beyond the aimed point"
+        );
+        // The ray's own rounding at its origin's distance is the floor here.
+        let off = (ray.origin + ray.dir * hit.t - hit.point).norm();
+        assert!(
+            off <= 1e-12 * (scale + hit.t * length),
+            "case {case}: {off:e} off the ray"
+        );
+        aimed += 1;
+    }
+    assert!(aimed > 450, "only {aimed} transversal aimed rays");
+}
+
+/// Revolutions of size 1e90 … 1e100 about tilted axes through points as
+/// far out: every surface point lies in `bounds()` and no patch box is
+/// inverted (the fuzzer found points outside and inverted boxes).
+#[test]
+fn revolutions_near_1e100_on_tilted_axes_stay_in_their_bounds() {
+    use revolve::nalgebra::Unit;
+    use revolve::{PatchBounds, Surface};
+    use revolve_testkit::Rng;
+    let mut rng = Rng(100);
+    for _ in 0..100 {
+        let s = 10f64.powf(rng.range(90.0, 100.0));
+        let profile = Bezier::new(
+            (0..4)
+                .map(|_| p(rng.unit() * s, (rng.unit() - 0.5) * 2.0 * s))
+                .collect(),
+        )
+        .unwrap();
+        let axis = Unit::new_normalize(Vector3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ));
+        let origin = Point3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ) * s;
+        let r = Revolution::new(profile).with_axis(origin, axis);
+        let b = r.bounds();
+        for _ in 0..50 {
+            let q = r.eval(rng.unit(), rng.unit() * std::f64::consts::TAU);
+            assert!(
+                (0..3).all(|k| b.min[k] <= q[k] && q[k] <= b.max[k]),
+                "{q:?} outside {b:?}"
+            );
+        }
+        for _ in 0..10 {
+            let (a, c) = (rng.unit(), rng.unit());
+            let patch = r.bound_patch((a.min(c), a.max(c)), (0.0, 1.0));
+            assert!(
+                (0..3).all(|k| patch.min[k] <= patch.max[k]),
+                "inverted {patch:?}"
+            );
+        }
+    }
+}
+
+/// Surfaces whose `u` knots are 1e-100 … 5e-324 apart: refused where a
+/// derivative could overflow, and otherwise every second partial finite
+/// (the fuzzer found NaN second partials below spans of 1e-150).
+#[test]
+fn tiny_knot_spans_give_finite_second_partials_or_an_error() {
+    use revolve::{BSplineSurface, Error, NurbsSurface};
+    for gap in [1e-100, 1e-150, 1e-160, 1e-200, 1e-300, 5e-324] {
+        let knots_u = [vec![0.0; 4], vec![gap], vec![2.0 * gap; 4]].concat();
+        let knots_v = clamped_knots(4, 3);
+        let grid: Vec<Vec<Point3<f64>>> = (0..5)
+            .map(|i| {
+                (0..4)
+                    .map(|j| Point3::new(i as f64 * gap, j as f64, ((i + j) % 3) as f64 * gap))
+                    .collect()
+            })
+            .collect();
+        let weights: Vec<Vec<f64>> = (0..5)
+            .map(|i| (0..4).map(|j| 1.0 + ((i * j) % 3) as f64 * 0.5).collect())
+            .collect();
+        let finite = |(a, b, c): (Vector3<f64>, Vector3<f64>, Vector3<f64>)| {
+            a.iter()
+                .chain(b.iter())
+                .chain(c.iter())
+                .all(|x| x.is_finite())
+        };
+        let polynomial =
+            BSplineSurface::new((3, 3), (knots_u.clone(), knots_v.clone()), grid.clone());
+        let rational = NurbsSurface::new((3, 3), (knots_u, knots_v), grid, weights);
+        for k in 0..=50 {
+            let u = 2.0 * gap * k as f64 / 50.0;
+            match &polynomial {
+                Ok(s) => assert!(finite(s.second_partials(u, 0.3)), "gap {gap:e}, u {u:e}"),
+                Err(e) => assert!(matches!(e, Error::DerivativeOverflow { .. }), "{e}"),
+            }
+            match &rational {
+                Ok(s) => assert!(finite(s.second_partials(u, 0.3)), "gap {gap:e}, u {u:e}"),
+                Err(e) => assert!(matches!(e, Error::DerivativeOverflow { .. }), "{e}"),
+            }
+        }
+    }
+}
+
+/// 20 000 random bicubic patches within ±1e100 (the fuzzer's hang of
+/// `BezierPatches::new`) build and answer a ray promptly.
+#[test]
+fn twenty_thousand_patches_near_1e100_build_promptly() {
+    use revolve::{BezierPatches, BezierSurface};
+    use revolve_testkit::Rng;
+    returns_within(60, || {
+        let mut rng = Rng(20_000);
+        let mut coordinate = || (rng.unit() - 0.5) * 2e100;
+        let patches: Vec<BezierSurface> = (0..20_000)
+            .map(|_| {
+                let grid = (0..4)
+                    .map(|_| {
+                        (0..4)
+                            .map(|_| Point3::new(coordinate(), coordinate(), coordinate()))
+                            .collect()
+                    })
+                    .collect();
+                BezierSurface::new(grid).unwrap()
+            })
+            .collect();
+        let model = BezierPatches::new(patches).unwrap();
+        let ray = Ray::new(Point3::new(0.0, 0.0, -3e100), Vector3::z());
+        let hit = model.intersect(&ray, 0.0, f64::INFINITY);
+        assert!(hit.is_some_and(|h| h.t.is_finite()));
+    });
+}
+
+/// Tessellations the fuzzer found hanging or over budget: a patch whose
+/// first row collapses to one point at tolerance 4.6e-6, and a revolution
+/// of size 1e100 at tolerance 1e96. Both return a mesh within the vertex cap.
+#[test]
+fn degenerate_and_huge_tessellations_return_promptly() {
+    use revolve::{BezierSurface, Mesh};
+    returns_within(60, || {
+        let mut grid: Vec<Vec<Point3<f64>>> = (0..4)
+            .map(|i| {
+                (0..4)
+                    .map(|j| Point3::new(i as f64, j as f64, ((i * j) % 3) as f64 * 0.4))
+                    .collect()
+            })
+            .collect();
+        grid[0] = vec![Point3::origin(); 4];
+        let mesh = BezierSurface::new(grid)
+            .unwrap()
+            .tessellate(4.6e-6)
+            .unwrap();
+        assert!(mesh.positions.len() <= Mesh::MAX_VERTICES);
+        let huge = Revolution::new(
+            Bezier::new(vec![p(1e100, -1e100), p(5e99, 0.0), p(1e100, 1e100)]).unwrap(),
+        );
+        let mesh = huge.tessellate(1e96).unwrap();
+        assert!(
+            mesh.positions.len() <= Mesh::MAX_VERTICES
+                && mesh.positions.iter().all(|q| q.coords.amax() <= 2e100)
+        );
+    });
+}
+
+/// `NewtonIntersector::new(&s, u32::MAX)` was silently clamped to depth 16;
+/// `try_new` says so with an error, and `new`'s clamp is documented.
+#[test]
+fn newton_depth_beyond_the_cap_is_an_error_with_try_new() {
+    use revolve::{Error, NewtonIntersector};
+    let profile = revolve::BSpline::clamped(
+        3,
+        (0..70)
+            .map(|i| p(1.0 + 0.3 * (i as f64 * 0.7).sin(), i as f64 * 0.1))
+            .collect(),
+    )
+    .unwrap();
+    let vase = Revolution::new(profile);
+    assert_eq!(
+        NewtonIntersector::try_new(&vase, u32::MAX).err(),
+        Some(Error::DepthTooLarge {
+            depth: u32::MAX,
+            max: revolve::ray::newton::MAX_DEPTH
+        })
+    );
+    let shallow = NewtonIntersector::try_new(&vase, 6).unwrap();
+    assert_eq!(shallow.depth(), 6);
+    assert_eq!(
+        NewtonIntersector::new(&vase, u32::MAX).depth(),
+        revolve::ray::newton::MAX_DEPTH
+    );
+}
+
+/// Curve calls the fuzzer found slow (seconds): the arc length of a
+/// degree-118 curve at 1.04e-9, a degree-40 B-spline flattened at its
+/// tolerance floor, 3 000 Bernstein coefficients to the power basis.
+#[test]
+fn slow_curve_calls_of_the_fuzzer_return_promptly() {
+    use revolve::bernstein::{horner, to_power_basis};
+    use revolve::{BSpline, Curve, Error};
+    use revolve_testkit::Rng;
+    returns_within(30, || {
+        let mut rng = Rng(118);
+        let high = Bezier::new((0..119).map(|_| p(rng.unit(), rng.unit())).collect()).unwrap();
+        let arc = high.arc_length(1.04e-9).unwrap();
+        assert!(arc.lower <= arc.length && arc.length <= arc.upper);
+        let spline =
+            BSpline::uniform(40, (0..60).map(|_| p(rng.unit(), rng.unit())).collect()).unwrap();
+        let Err(Error::ToleranceTooSmall { min, .. }) = spline.flatten(1e-30) else {
+            panic!("1e-30 is below any floor")
+        };
+        let flat = spline.flatten(min).unwrap();
+        assert!(flat.samples.len() > 2);
+        let coefficients: Vec<f64> = (0..3000).map(|_| rng.unit()).collect();
+        assert_eq!(to_power_basis(&coefficients).len(), 3000);
+        // The forward-difference form against the Bernstein sum, degree 12.
+        let small: Vec<f64> = (0..13).map(|_| rng.unit()).collect();
+        let power = to_power_basis(&small);
+        for k in 0..=10 {
+            let t = k as f64 / 10.0;
+            let direct: f64 = (0..13).map(|i| small[i] * bernstein(12, i, t)).sum();
+            assert!(
+                (horner(&power, t).unwrap() - direct).abs() < 1e-9,
+                "t = {t}"
+            );
+        }
+    });
+}
+
+/// `NurbsSurface::to_bezier_patches` of a surface reaching ±1e100 gave
+/// nets with a coordinate of 1.0000000000000002e100, which the constructors
+/// refuse: the nets are convex combinations of the grid, clamped back, and
+/// every piece is accepted again (and so are `BSplineSurface`'s).
+#[test]
+fn pieces_of_surfaces_reaching_1e100_are_accepted_back() {
+    use revolve::{BSplineSurface, BezierSurface, NurbsSurface};
+    use revolve_testkit::Rng;
+    let mut rng = Rng(1);
+    for _ in 0..100 {
+        let grid: Vec<Vec<Point3<f64>>> = (0..6)
+            .map(|_| {
+                (0..5)
+                    .map(|_| {
+                        let z = if rng.below(2) == 0 { 1e100 } else { -1e100 };
+                        Point3::new(
+                            (rng.unit() * 2.0 - 1.0) * 1e100,
+                            (rng.unit() * 2.0 - 1.0) * 1e100,
+                            z,
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
+        let weights = (0..6)
+            .map(|_| (0..5).map(|_| rng.range(0.5, 2.0)).collect())
+            .collect();
+        let knots = (clamped_knots(6, 3), clamped_knots(5, 2));
+        let rational = NurbsSurface::new((3, 2), knots.clone(), grid.clone(), weights).unwrap();
+        for piece in rational.to_bezier_patches() {
+            let bezier_knots = (clamped_knots(4, 3), clamped_knots(3, 2));
+            NurbsSurface::new((3, 2), bezier_knots, piece.points, piece.weights).unwrap();
+        }
+        let polynomial = BSplineSurface::new((3, 2), knots, grid).unwrap();
+        for piece in polynomial.to_bezier_patches() {
+            BezierSurface::new(piece.surface.points().to_vec()).unwrap();
+        }
+    }
+}
+
+/// Weights of 5e-324 … 4e-323 (ratio 8, allowed) are a bit or three each:
+/// knot insertion moved the curve by 7e-4 and elevation was refused. They
+/// are now scaled by one power of two at construction, exactly, so the
+/// curve is the one with weights 1, 2, 4, 1, 8 (the reference) and insertion
+/// and elevation keep it.
+#[test]
+fn subnormal_weights_are_rescaled_exactly() {
+    use revolve::Curve;
+    let knots = clamped_knots(5, 2);
+    let points: Vec<Point2<f64>> = (0..5).map(|i| p(i as f64, (i % 2) as f64)).collect();
+    let tiny = Nurbs::new(
+        2,
+        knots.clone(),
+        points.clone(),
+        vec![5e-324, 1e-323, 2e-323, 5e-324, 4e-323],
+    )
+    .unwrap();
+    let reference = Nurbs::new(2, knots, points, vec![1.0, 2.0, 4.0, 1.0, 8.0]).unwrap();
+    let inserted = tiny.insert_knot(0.3, 1).unwrap();
+    let elevated = tiny.elevate_degree(1).unwrap();
+    for k in 0..=20 {
+        let t = k as f64 / 20.0;
+        let exact = reference.eval(t);
+        assert!((tiny.eval(t) - exact).norm() <= 1e-15, "t = {t}");
+        assert!(
+            (inserted.eval(t) - exact).norm() <= 1e-14,
+            "inserted, t = {t}"
+        );
+        assert!(
+            (elevated.eval(t) - exact).norm() <= 1e-13,
+            "elevated, t = {t}"
+        );
+    }
+}
+
+/// A degree-8 Bézier curve through the query point reported a nearest
+/// distance of 1e-10; it is zero up to rounding of the evaluation.
+#[test]
+fn a_curve_through_the_query_point_is_at_distance_zero() {
+    use revolve::Curve;
+    use revolve_testkit::Rng;
+    let mut rng = Rng(8);
+    for _ in 0..200 {
+        let curve = Bezier::new((0..9).map(|_| p(rng.unit(), rng.unit())).collect()).unwrap();
+        let on = curve.eval(rng.unit());
+        let nearest = curve.nearest_point(&on).unwrap();
+        assert!(nearest.distance <= 1e-14, "{}", nearest.distance);
+    }
+}
