@@ -414,6 +414,11 @@ fn clamped_knots(n: usize, p: usize) -> Vec<f64> {
     knots
 }
 
+/// A surface's point and normal at `(u, v)`.
+type PointAndNormal = dyn Fn(f64, f64) -> (Point3<f64>, Option<Vector3<f64>>);
+/// A surface's first hit along a ray.
+type FirstHit = dyn Fn(&Ray) -> Option<revolve::Hit>;
+
 /// The fuzzer's misses on large tensor surfaces (a bicubic height field of
 /// size 3e92 among them): rays aimed at interior points of Bézier and NURBS
 /// surfaces of size 1e6 … 1e99, with directions of length 1e-100 … 1e100
@@ -449,8 +454,8 @@ fn tensor_surfaces_up_to_1e100_are_hit_where_aimed() {
                     .collect()
             })
             .collect();
-        let surface: Box<dyn Fn(f64, f64) -> (Point3<f64>, Option<Vector3<f64>>)>;
-        let intersect: Box<dyn Fn(&Ray) -> Option<revolve::Hit>>;
+        let surface: Box<PointAndNormal>;
+        let intersect: Box<FirstHit>;
         if case % 4 < 2 {
             let s = std::rc::Rc::new(BezierSurface::new(grid).unwrap());
             let e = s.clone();
