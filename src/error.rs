@@ -217,6 +217,18 @@ pub enum Error {
         /// The smallest tolerance accepted for this object.
         min: f64,
     },
+    /// A mesh within the tolerance would have more than
+    /// [`Mesh::MAX_VERTICES`](crate::Mesh::MAX_VERTICES) vertices.
+    MeshTooLarge {
+        /// The tolerance that was given.
+        tolerance: f64,
+        /// How many vertices the mesh would need at least.
+        vertices: f64,
+        /// The vertex cap.
+        max: usize,
+        /// A tolerance whose mesh fits.
+        min: f64,
+    },
     /// A tolerance is larger than the solver accepts.
     ToleranceTooLarge {
         /// The tolerance that was given.
@@ -479,8 +491,22 @@ impl fmt::Display for Error {
             Error::ToleranceTooSmall { tolerance, min } => write!(
                 f,
                 "tolerance {} is below what double precision can guarantee at this \
-                 scale; use at least {}",
+                 object's size (tolerances are absolute, in the object's units); use at \
+                 least {}",
                 Num(tolerance),
+                Num(min)
+            ),
+            Error::MeshTooLarge {
+                tolerance,
+                vertices,
+                max,
+                min,
+            } => write!(
+                f,
+                "a mesh within tolerance {} would need at least {} vertices, more than \
+                 the {max} a mesh may have; use a tolerance of at least {}",
+                Num(tolerance),
+                Num(vertices.round()),
                 Num(min)
             ),
             Error::ToleranceTooLarge { tolerance, max } => write!(

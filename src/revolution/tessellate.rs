@@ -4,7 +4,7 @@
 //! The profile is flattened adaptively ([`Flattening`](crate::Flattening)) so
 //! that each profile piece lies within `ε_p` of its chord, and the angle is cut
 //! into `N` equal steps so that a circle of the largest radius `R` lies within
-//! its sagitta `R(1 − cos(π/N))` of its chords. Between two profile samples and
+//! its sagitta `R(1 − cos(π/N)) = 2R sin²(π/2N)` of its chords. Between two profile samples and
 //! two angles the surface patch lies within `ε_p` of the patch swept by the
 //! chord (a piece of a cone), and that piece of cone lies within the sagitta
 //! of the planar isosceles trapezoid through its four corners, which the mesh
@@ -20,10 +20,6 @@ use crate::curve::{Homogeneous, MIN_RELATIVE_TOLERANCE, flatten_controls, flatte
 use crate::{Curve, Error, Mesh, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 use std::f64::consts::{PI, TAU};
-
-/// The most angular steps [`Revolution::tessellate`] uses; tolerances that
-/// would need more are refused (`ToleranceTooSmall`).
-const MAX_ANGLE_STEPS: usize = 1 << 16;
 
 /// What [`Revolution::tessellate`] decided: the profile rings, the angular
 /// steps and the sagitta they leave.
@@ -44,9 +40,10 @@ impl<C: Curve<2>> Revolution<C> {
     ///
     /// # Errors
     /// [`Error::InvalidTolerance`]; [`Error::ToleranceTooSmall`] below what
-    /// flattening certifies (for half the tolerance), below what 65536
-    /// angular steps reach, or where the mesh would exceed 2²⁴ vertices (its
-    /// `min` is a tolerance that fits, see [`Mesh::MAX_VERTICES`]);
+    /// flattening certifies (for half the tolerance);
+    /// [`Error::MeshTooLarge`] where the mesh would
+    /// exceed 2²⁴ vertices (its `min` is a tolerance that fits, see
+    /// [`Mesh::MAX_VERTICES`]);
     /// [`Error::NotPiecewisePolynomial`] for a profile without usable
     /// [(rational) Bézier spans](Curve::rational_bezier_spans) (none, so no certified bound is
     /// possible, or spans that give samples with a NaN or infinite value);
@@ -59,8 +56,29 @@ impl<C: Curve<2>> Revolution<C> {
         } = match self.plan(tolerance) {
             Ok(plan) => plan,
             Err(Error::ToleranceTooSmall { min, .. }) => {
-                return Err(Error::ToleranceTooSmall {
+                // Where even the precision floor gives too many vertices, the
+                // vertex cap is what the caller must respect.
+                let usable = self.usable_minimum(min)?;
+                return Err(match self.plan(min) {
+                    Err(Error::MeshTooLarge { vertices, max, .. }) => Error::MeshTooLarge {
+                        tolerance,
+                        vertices,
+                        max,
+                        min: usable,
+                    },
+                    _ => Error::ToleranceTooSmall {
+                        tolerance,
+                        min: usable,
+                    },
+                });
+            }
+            Err(Error::MeshTooLarge {
+                vertices, max, min, ..
+            }) => {
+                return Err(Error::MeshTooLarge {
                     tolerance,
+                    vertices,
+                    max,
                     min: self.usable_minimum(min)?,
                 });
             }
@@ -128,8 +146,8 @@ impl<C: Curve<2>> Revolution<C> {
         Ok(mesh)
     }
     /// The profile samples and angular steps for `tolerance`, with the
-    /// bound; `ToleranceTooSmall` (with a `min` for this check) if any limit
-    /// is exceeded.
+    /// bound; `ToleranceTooSmall` or `MeshTooLarge` (with a `min` for this
+    /// check) if a limit is exceeded.
     fn plan(&self, tolerance: f64) -> Result<Plan, Error> {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(Error::InvalidTolerance { tolerance });
@@ -149,10 +167,9 @@ impl<C: Curve<2>> Revolution<C> {
             .iter()
             .flat_map(|s| s.curve.points())
             .fold(0.0_f64, |m, p| m.max(p.x.abs()));
-        // The smallest tolerance both halves can meet: flattening's floor
-        // (for half the tolerance) and the sagitta with the most steps.
-        let min = (2.0 * MIN_RELATIVE_TOLERANCE * scale)
-            .max(2.0 * r_max * (1.0 - (PI / MAX_ANGLE_STEPS as f64).cos()) * (1.0 + 1e-9));
+        // Flattening's floor (for half the tolerance); the angular steps
+        // have none of their own, only the vertex cap below.
+        let min = 2.0 * MIN_RELATIVE_TOLERANCE * scale;
         if tolerance < min {
             return Err(Error::ToleranceTooSmall { tolerance, min });
         }
@@ -195,26 +212,28 @@ impl<C: Curve<2>> Revolution<C> {
         if !usable {
             return Err(Error::NotPiecewisePolynomial);
         }
-        // Smallest N with R(1 − cos(π/N)) ≤ tolerance/2 (at most the cap,
-        // by the check above).
+        // Smallest N with 2R sin²(π/2N) ≤ tolerance/2 (no cancellation, so
+        // also for the tiniest tolerances).
         let steps = if r_max == 0.0 {
-            3
+            3.0
         } else {
-            let half = (1.0 - 0.5 * tolerance / r_max).clamp(-1.0, 1.0).acos();
-            ((PI / half).ceil() as usize).clamp(3, MAX_ANGLE_STEPS)
+            let half = 2.0 * (0.25 * tolerance / r_max).sqrt().min(1.0).asin();
+            (PI / half).ceil().max(3.0)
         };
-        let sagitta = r_max * (1.0 - (PI / steps as f64).cos());
-        let columns = steps + 1;
         let rings = flat.samples.len();
         // The vertex count grows like 1/tolerance; refuse meshes beyond the
         // budget with the tolerance that would fit it.
-        let vertices = rings as f64 * columns as f64;
+        let vertices = rings as f64 * (steps + 1.0);
         if vertices > Mesh::MAX_VERTICES as f64 {
-            return Err(Error::ToleranceTooSmall {
+            return Err(Error::MeshTooLarge {
                 tolerance,
+                vertices,
+                max: Mesh::MAX_VERTICES,
                 min: tolerance * vertices / Mesh::MAX_VERTICES as f64 * 1.25,
             });
         }
+        let steps = steps as usize;
+        let sagitta = 2.0 * r_max * (0.5 * PI / steps as f64).sin().powi(2);
         Ok(Plan {
             flat,
             steps,
@@ -228,7 +247,10 @@ impl<C: Curve<2>> Revolution<C> {
         for _ in 0..4 {
             match self.plan(min) {
                 Ok(_) => return Ok(min),
-                Err(Error::ToleranceTooSmall { min: next, .. }) => min = next.max(1.5 * min),
+                Err(
+                    Error::ToleranceTooSmall { min: next, .. }
+                    | Error::MeshTooLarge { min: next, .. },
+                ) => min = next.max(1.5 * min),
                 Err(e) => return Err(e),
             }
         }

@@ -187,8 +187,9 @@ impl BezierSurface {
     /// # Errors
     /// [`Error::InvalidTolerance`] (not finite and positive);
     /// [`Error::ToleranceTooSmall`] below `10⁻¹⁰` of the largest control
-    /// coordinate or where the mesh would exceed [`Mesh::MAX_VERTICES`]
-    /// (its `min` is a tolerance that fits); [`Error::AllocationFailed`].
+    /// coordinate; [`Error::MeshTooLarge`] where the mesh would exceed
+    /// [`Mesh::MAX_VERTICES`] (its `min` is a tolerance that fits);
+    /// [`Error::AllocationFailed`].
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
         tessellate_patches(self.table.degrees, &self.table.patches, tolerance)
     }

@@ -114,8 +114,9 @@ struct Edge {
 /// # Errors
 /// [`Error::InvalidTolerance`] (not finite and positive);
 /// [`Error::ToleranceTooSmall`] below `10⁻¹⁰` of the largest control
-/// coordinate, below the rounding allowance, or where the mesh would exceed
-/// [`Mesh::MAX_VERTICES`] (its `min` fits); [`Error::AllocationFailed`].
+/// coordinate or below the rounding allowance; [`Error::MeshTooLarge`]
+/// where the mesh would exceed [`Mesh::MAX_VERTICES`] (its `min` fits);
+/// [`Error::AllocationFailed`].
 pub(crate) fn tessellate_patches(
     degrees: (usize, usize),
     patches: &[Patch],
@@ -132,13 +133,17 @@ pub(crate) fn tessellate_patches(
     let w_max = controls().fold(0.0_f64, |m, h| m.max(h.w));
     let rounding = 16.0 * (p + q + 2) as f64 * f64::EPSILON * scale * (w_max / w_min);
     let min = (MIN_RELATIVE_TOLERANCE * scale).max(2.0 * rounding);
-    if tolerance < min {
-        return Err(Error::ToleranceTooSmall { tolerance, min });
-    }
     if patches.is_empty() {
-        return Ok(empty_mesh());
+        return if tolerance < min {
+            Err(Error::ToleranceTooSmall { tolerance, min })
+        } else {
+            Ok(empty_mesh())
+        };
     }
-    let target = tolerance - rounding;
+    // Below the precision floor the mesh is planned at the floor, so that
+    // the error names the vertex cap where even the floor exceeds it.
+    let effective = tolerance.max(min);
+    let target = effective - rounding;
     let curvatures: Vec<Curvature> = patches.iter().map(|x| curvature(&x.net, p, q)).collect();
     // Direction nodes: 2k is patch k's s direction, 2k + 1 its t direction.
     let mut need: Vec<f64> = curvatures
@@ -178,10 +183,15 @@ pub(crate) fn tessellate_patches(
         } else {
             f64::MAX
         };
-        return Err(Error::ToleranceTooSmall {
+        return Err(Error::MeshTooLarge {
             tolerance,
-            min: (tolerance * ratio * 1.25).max(min),
+            vertices,
+            max: Mesh::MAX_VERTICES,
+            min: (effective * ratio * 1.25).max(min),
         });
+    }
+    if tolerance < min {
+        return Err(Error::ToleranceTooSmall { tolerance, min });
     }
     let counts: Vec<(usize, usize)> = need
         .chunks(2)

@@ -1095,7 +1095,10 @@ fn tiny_tolerances_are_too_small() {
         (glass.surface.tessellate(0.5e-10 * glass.scale), glass.scale),
     ] {
         match surface {
-            Err(Error::ToleranceTooSmall { tolerance, min }) => {
+            Err(
+                Error::ToleranceTooSmall { tolerance, min }
+                | Error::MeshTooLarge { tolerance, min, .. },
+            ) => {
                 assert!(tolerance < min, "{tolerance} vs {min}");
                 assert!(min >= 1e-10 * scale * (1.0 - 1e-12), "min {min}");
             }
@@ -1330,14 +1333,17 @@ fn jump_in_the_profile_is_within_the_bound() {
     }
 }
 
-/// `ToleranceTooSmall` should report the tolerance the caller gave and a
-/// `min` that works ("use at least {min}").
+/// `ToleranceTooSmall` and `MeshTooLarge` should report the tolerance the
+/// caller gave and a `min` that works ("use at least {min}").
 #[test]
 fn tolerance_too_small_reports_a_usable_minimum() {
     let surface = Revolution::new(bezier(&VASE));
     let given = 1e-11;
     match surface.tessellate(given) {
-        Err(Error::ToleranceTooSmall { tolerance, min }) => {
+        Err(
+            Error::ToleranceTooSmall { tolerance, min }
+            | Error::MeshTooLarge { tolerance, min, .. },
+        ) => {
             let retry = surface.tessellate(min).map(|m| m.bound);
             assert!(retry.is_ok(), "tessellate(min = {min:e}) fails: {retry:?}");
             assert_eq!(
@@ -1362,7 +1368,9 @@ fn bound_within_tolerance_near_the_smallest_tolerance() {
                 "tolerance {tolerance:e}: bound {:e}",
                 mesh.bound
             ),
-            Err(Error::ToleranceTooSmall { min, .. }) => assert!(min > tolerance),
+            Err(Error::ToleranceTooSmall { min, .. } | Error::MeshTooLarge { min, .. }) => {
+                assert!(min > tolerance)
+            }
             Err(e) => panic!("tolerance {tolerance:e}: {e}"),
         }
     }

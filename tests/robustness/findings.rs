@@ -810,3 +810,40 @@ fn a_curve_through_the_query_point_is_at_distance_zero() {
         assert!(nearest.distance <= 1e-14, "{}", nearest.distance);
     }
 }
+
+/// `sphere.tessellate(1e-9)` said the tolerance was below what double
+/// precision can guarantee (and took 0.46 s to say it); the real limit is
+/// the vertex cap, and the error now names it with a tolerance that fits.
+/// A tolerance below the precision floor of a small object still gets
+/// `ToleranceTooSmall`.
+#[test]
+fn a_mesh_beyond_the_vertex_cap_says_so() {
+    use revolve::{BezierSurface, Error, Mesh};
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    let sphere = Revolution::new(Nurbs::arc(Point2::origin(), 1.0, -half_pi, half_pi).unwrap());
+    for tolerance in [1e-7, 1e-9, 1e-12] {
+        let err = sphere.tessellate(tolerance).unwrap_err();
+        let Error::MeshTooLarge {
+            tolerance: given,
+            vertices,
+            max,
+            min,
+        } = err
+        else {
+            panic!("{tolerance:e}: {err:?}")
+        };
+        assert_eq!((given, max), (tolerance, Mesh::MAX_VERTICES));
+        assert!(vertices > max as f64 && min > tolerance);
+        assert!(err.to_string().contains("vertices"), "{err}");
+        assert!(!err.to_string().contains("double precision"), "{err}");
+    }
+    // A bilinear patch needs few vertices at its precision floor.
+    let flat = BezierSurface::new(vec![
+        vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+        vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0)],
+    ])
+    .unwrap();
+    let err = flat.tessellate(1e-300).unwrap_err();
+    assert!(matches!(err, Error::ToleranceTooSmall { .. }), "{err:?}");
+    assert!(err.to_string().contains("double precision"), "{err}");
+}

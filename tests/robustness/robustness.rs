@@ -498,9 +498,16 @@ fn meshes_beyond_max_vertices_are_refused() {
     // thousands of rings, far beyond 2²⁴ vertices.
     let vase = Revolution::new(common::vase());
     match vase.tessellate(5e-9) {
-        Err(Error::ToleranceTooSmall { tolerance, min }) => {
-            assert_eq!(tolerance, 5e-9);
+        Err(Error::MeshTooLarge {
+            tolerance,
+            vertices,
+            max,
+            min,
+        }) => {
+            assert_eq!((tolerance, max), (5e-9, Mesh::MAX_VERTICES));
+            assert!(vertices > max as f64, "{vertices}");
             assert!(min > 5e-9, "{min:e}");
+            assert!(vase.tessellate(min).is_ok());
         }
         other => panic!("{:?}", other.map(|m| m.positions.len())),
     }

@@ -738,7 +738,10 @@ fn bad_tolerances_are_named_errors() {
         }
         for small in [1e-300, 1e-12] {
             match tessellate(small) {
-                Err(Error::ToleranceTooSmall { tolerance, min }) => {
+                Err(
+                    Error::ToleranceTooSmall { tolerance, min }
+                    | Error::MeshTooLarge { tolerance, min, .. },
+                ) => {
                     assert_eq!(tolerance, small);
                     assert!(min > small && min.is_finite());
                 }
@@ -750,10 +753,20 @@ fn bad_tolerances_are_named_errors() {
     // tolerance up still works (bilinear: n² vertices for τ = 1/(4n²)).
     let flat = BezierSurface::new(grid(2, 2, |a, b| Point3::new(a, b, a * b))).unwrap();
     let err = flat.tessellate(1e-9).unwrap_err();
-    let Error::ToleranceTooSmall { min, .. } = err else {
+    let Error::MeshTooLarge {
+        tolerance,
+        vertices,
+        max,
+        min,
+    } = err
+    else {
         panic!("{err:?}")
     };
     assert!(min > 1e-9 && min < 1e-7, "min {min}");
+    assert_eq!((tolerance, max), (1e-9, Mesh::MAX_VERTICES));
+    assert!(vertices > max as f64, "{vertices}");
+    assert!(flat.tessellate(min).is_ok());
+    assert!(err.to_string().contains("vertices"), "{err}");
 }
 
 #[test]
