@@ -305,6 +305,43 @@ pub enum Error {
         axis: nalgebra::Vector3<f64>,
     },
 
+    /// A surface needs at least one row of at least one control point.
+    EmptyGrid,
+    /// A surface's control point has a NaN or infinite coordinate.
+    NonFiniteGridPoint {
+        /// Its row (along `u`).
+        row: usize,
+        /// Its column (along `v`).
+        column: usize,
+    },
+    /// A surface's control-point coordinate is larger in magnitude than
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    GridCoordinateTooLarge {
+        /// Its row (along `u`).
+        row: usize,
+        /// Its column (along `v`).
+        column: usize,
+        /// The offending coordinate.
+        value: f64,
+    },
+    /// A surface's weight is zero, negative, NaN or infinite.
+    InvalidGridWeight {
+        /// Its row (along `u`).
+        row: usize,
+        /// Its column (along `v`).
+        column: usize,
+        /// The offending weight.
+        weight: f64,
+    },
+    /// A surface's knot vector (or a knot to insert) in one direction is
+    /// wrong; `error` is the curve's error for it.
+    SurfaceKnots {
+        /// `u` or `v`.
+        direction: ParameterDirection,
+        /// What is wrong, as for a curve's knots.
+        error: Box<Error>,
+    },
+
     // Tensor-product surfaces and models made of patches.
     /// A grid of control points (or of weights) of a tensor-product surface
     /// has rows of different lengths: row `row` has `found` entries where
@@ -349,6 +386,38 @@ impl fmt::Display for Error {
         match *self {
             Error::NoControlPoints => {
                 write!(f, "a curve needs at least one control point, got none")
+            }
+            Error::EmptyGrid => write!(
+                f,
+                "a surface needs at least one row of at least one control point, got none"
+            ),
+            Error::NonFiniteGridPoint { row, column } => write!(
+                f,
+                "the surface's control point at row {row}, column {column} has a NaN or \
+                 infinite coordinate"
+            ),
+            Error::GridCoordinateTooLarge { row, column, value } => write!(
+                f,
+                "the surface's control point at row {row}, column {column} has coordinate {}, \
+                 beyond the supported magnitude {}",
+                Num(value),
+                Num(MAX_COORDINATE)
+            ),
+            Error::InvalidGridWeight {
+                row,
+                column,
+                weight,
+            } => write!(
+                f,
+                "the surface's weight at row {row}, column {column} is {}; weights must be \
+                 positive and finite",
+                Num(weight)
+            ),
+            Error::SurfaceKnots {
+                direction,
+                ref error,
+            } => {
+                write!(f, "the surface's {direction} knots: {error}")
             }
             Error::NonFinitePoint { index } => {
                 write!(f, "control point {index} has a NaN or infinite coordinate")
@@ -619,5 +688,24 @@ impl fmt::Display for Num {
         } else {
             write!(f, "{:e}", self.0)
         }
+    }
+}
+
+/// A parameter direction of a surface: `u` (the rows of a control grid
+/// follow each other along it) or `v` (along each row).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ParameterDirection {
+    /// The first parameter.
+    U,
+    /// The second parameter.
+    V,
+}
+
+impl fmt::Display for ParameterDirection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ParameterDirection::U => "u",
+            ParameterDirection::V => "v",
+        })
     }
 }

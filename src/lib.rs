@@ -129,7 +129,7 @@ pub use curve::{
     ArcLength, BSpline, Bezier, BezierSpan, Curve, CurveProjector, CurveSample, Flattening,
     MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier, RationalBezierSpan,
 };
-pub use error::Error;
+pub use error::{Error, ParameterDirection};
 pub use limits::MAX_COORDINATE;
 pub use mesh::Mesh;
 pub use ray::bvh::{BoxRay, Bvh, Walk};

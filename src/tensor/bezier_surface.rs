@@ -91,10 +91,10 @@ impl BezierSurface {
     /// `u`), of degrees `(rows − 1, cols − 1)`, on `[0, 1]²`.
     ///
     /// # Errors
-    /// [`Error::NoControlPoints`] (no rows, or empty rows),
+    /// [`Error::EmptyGrid`] (no rows, or empty rows),
     /// [`Error::RaggedGrid`] (rows of different lengths),
-    /// [`Error::NonFinitePoint`] / [`Error::CoordinateTooLarge`] with the
-    /// flat index `i·cols + j`, [`Error::DerivativeOverflow`] when a
+    /// [`Error::NonFiniteGridPoint`] / [`Error::GridCoordinateTooLarge`] with
+    /// the row and column, [`Error::DerivativeOverflow`] when a
     /// hodograph of a row or a column could exceed
     /// [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE).
     pub fn new(points: Vec<Vec<Point3<f64>>>) -> Result<Self, Error> {

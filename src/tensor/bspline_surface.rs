@@ -12,7 +12,9 @@ use crate::curve::{
     Homogeneous, boehm_insert, check_derivative_points, knot_to_insert, validate_knots,
 };
 use crate::limits::MAX_COORDINATE;
-use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
+use crate::{
+    Aabb, Error, Hit, Intersect, ParameterDirection, PatchBounds, Ray, Surface, Tolerance,
+};
 use nalgebra::{Point1, Point3, Unit, Vector3};
 
 /// A tensor-product B-spline surface
@@ -94,11 +96,12 @@ impl BSplineSurface {
     /// control grid `points[i][j]`.
     ///
     /// # Errors
-    /// The grid's ([`Error::NoControlPoints`], [`Error::RaggedGrid`],
-    /// [`Error::NonFinitePoint`] / [`Error::CoordinateTooLarge`] with the flat
-    /// index `i·cols + j`), then the knot checks of
+    /// The grid's ([`Error::EmptyGrid`], [`Error::RaggedGrid`],
+    /// [`Error::NonFiniteGridPoint`] / [`Error::GridCoordinateTooLarge`] with
+    /// the row and column), then the knot checks of
     /// [`BSpline::new`](crate::BSpline::new) for `U` (against the rows), then
-    /// for `V` (against the columns): [`Error::DegreeTooHigh`],
+    /// for `V` (against the columns), each wrapped in
+    /// [`Error::SurfaceKnots`] with its direction: [`Error::DegreeTooHigh`],
     /// [`Error::KnotCount`], [`Error::NonFiniteKnot`], [`Error::KnotTooLarge`],
     /// [`Error::DecreasingKnots`], [`Error::KnotGapTooSmall`],
     /// [`Error::KnotMultiplicity`], [`Error::EmptyDomain`]; then
@@ -170,8 +173,9 @@ impl BSplineSurface {
     /// 5.15). A `t` within rounding of an existing knot inserts that knot.
     ///
     /// # Errors
-    /// [`Error::ParameterOutOfDomain`] (NaN or outside the `u` domain),
-    /// [`Error::KnotMultiplicity`] (beyond `p + 1`), and the checks of
+    /// [`Error::SurfaceKnots`] in `u` wrapping
+    /// [`Error::ParameterOutOfDomain`] (NaN or outside the `u` domain) or
+    /// [`Error::KnotMultiplicity`] (beyond `p + 1`); the checks of
     /// [`new`](Self::new) on the result.
     ///
     /// ```
@@ -273,6 +277,14 @@ pub(crate) struct TensorSpline {
     pub(crate) table: PatchTable,
 }
 
+/// Wraps a curve's knot error as the surface's in `direction`.
+fn in_direction(direction: ParameterDirection) -> impl Fn(Error) -> Error {
+    move |error| Error::SurfaceKnots {
+        direction,
+        error: Box::new(error),
+    }
+}
+
 impl TensorSpline {
     /// Validates and builds (`weights: None` for a polynomial spline).
     pub(crate) fn new(
@@ -283,8 +295,8 @@ impl TensorSpline {
     ) -> Result<Self, Error> {
         let (_, cols) = flatten_points(&points)?;
         let rows = points.len();
-        validate_knots(degrees.0, &knots.0, rows)?;
-        validate_knots(degrees.1, &knots.1, cols)?;
+        validate_knots(degrees.0, &knots.0, rows).map_err(in_direction(ParameterDirection::U))?;
+        validate_knots(degrees.1, &knots.1, cols).map_err(in_direction(ParameterDirection::V))?;
         let rational = weights.is_some();
         let weights = match weights {
             Some(w) => flatten_weights(&w, rows, cols)?
@@ -387,7 +399,12 @@ impl TensorSpline {
             &self.knots.1
         };
         let domain = self.table.domain()[axis];
-        let t = knot_to_insert(knots, p, domain, t, times)?;
+        let direction = if axis == 0 {
+            ParameterDirection::U
+        } else {
+            ParameterDirection::V
+        };
+        let t = knot_to_insert(knots, p, domain, t, times).map_err(in_direction(direction))?;
         // The lines along the axis: columns for u, rows for v.
         let cols = self.points[0].len();
         let pairs: Vec<(Point3<f64>, f64)> = self

@@ -9,16 +9,16 @@ use nalgebra::Point3;
 /// Checks a grid of control points and flattens it row-major.
 ///
 /// # Errors
-/// [`Error::NoControlPoints`] for no rows or an empty first row,
+/// [`Error::EmptyGrid`] for no rows or an empty first row,
 /// [`Error::RaggedGrid`] for a row of another length than the first, then
-/// [`Error::NonFinitePoint`] / [`Error::CoordinateTooLarge`] with the flat
-/// index `i·cols + j` of the point `points[i][j]`.
+/// [`Error::NonFiniteGridPoint`] / [`Error::GridCoordinateTooLarge`] with the
+/// row and column of the point.
 pub(crate) fn flatten_points(
     points: &[Vec<Point3<f64>>],
 ) -> Result<(Vec<Point3<f64>>, usize), Error> {
     let cols = points.first().map_or(0, Vec::len);
     if cols == 0 {
-        return Err(Error::NoControlPoints);
+        return Err(Error::EmptyGrid);
     }
     if let Some(row) = points.iter().position(|r| r.len() != cols) {
         return Err(Error::RaggedGrid {
@@ -28,7 +28,18 @@ pub(crate) fn flatten_points(
         });
     }
     let flat: Vec<Point3<f64>> = points.iter().flatten().copied().collect();
-    validate_points(&flat)?;
+    validate_points(&flat).map_err(|e| match e {
+        Error::NonFinitePoint { index } => Error::NonFiniteGridPoint {
+            row: index / cols,
+            column: index % cols,
+        },
+        Error::CoordinateTooLarge { index, value } => Error::GridCoordinateTooLarge {
+            row: index / cols,
+            column: index % cols,
+            value,
+        },
+        other => other,
+    })?;
     Ok((flat, cols))
 }
 /// Checks a grid of weights for `rows × cols` points and flattens it.
@@ -37,7 +48,8 @@ pub(crate) fn flatten_points(
 /// [`Error::WeightCount`] (expected `rows·cols`) when the number of rows
 /// differs, [`Error::RaggedGrid`] for a row of other than `cols` weights, then
 /// the curve checks (`validate_weights`) on the flat list:
-/// [`Error::InvalidWeight`] (flat index), [`Error::WeightRatioTooLarge`].
+/// [`Error::InvalidGridWeight`] (its row and column),
+/// [`Error::WeightRatioTooLarge`].
 pub(crate) fn flatten_weights(
     weights: &[Vec<f64>],
     rows: usize,
@@ -57,7 +69,14 @@ pub(crate) fn flatten_weights(
         });
     }
     let flat: Vec<f64> = weights.iter().flatten().copied().collect();
-    validate_weights(&flat, rows * cols)?;
+    validate_weights(&flat, rows * cols).map_err(|e| match e {
+        Error::InvalidWeight { index, weight } => Error::InvalidGridWeight {
+            row: index / cols,
+            column: index % cols,
+            weight,
+        },
+        other => other,
+    })?;
     Ok(normalized_weights(flat))
 }
 /// A power of two near the largest weight: dividing by it is exact and keeps

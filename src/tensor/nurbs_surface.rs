@@ -93,8 +93,8 @@ impl NurbsSurface {
     /// The checks of [`BSplineSurface::new`] for the points and knots; then
     /// [`Error::WeightCount`] (not one row of weights per row of points),
     /// [`Error::RaggedGrid`] (a row of weights of another length than the
-    /// points' rows), [`Error::InvalidWeight`] (zero, negative, NaN or
-    /// infinite; flat index `i·cols + j`),
+    /// points' rows), [`Error::InvalidGridWeight`] (zero, negative, NaN or
+    /// infinite; its row and column),
     /// [`Error::WeightRatioTooLarge`]; [`Error::DerivativeOverflow`] as for
     /// the B-spline, in homogeneous coordinates.
     pub fn new(

@@ -491,6 +491,29 @@ fn every_display_message_is_distinct_and_nonempty() {
             tolerance: 1e-20,
             min: 1e-10,
         },
+        Error::MeshTooLarge {
+            tolerance: 1e-9,
+            vertices: 1e10,
+            max: 1 << 24,
+            min: 1e-6,
+        },
+        Error::DepthTooLarge { depth: 20, max: 16 },
+        Error::EmptyGrid,
+        Error::NonFiniteGridPoint { row: 1, column: 2 },
+        Error::GridCoordinateTooLarge {
+            row: 1,
+            column: 2,
+            value: 1e101,
+        },
+        Error::InvalidGridWeight {
+            row: 1,
+            column: 2,
+            weight: 0.0,
+        },
+        Error::SurfaceKnots {
+            direction: revolve::ParameterDirection::U,
+            error: Box::new(Error::DecreasingKnots { index: 1 }),
+        },
     ];
     let msgs: Vec<String> = all.iter().map(ToString::to_string).collect();
     for (i, m) in msgs.iter().enumerate() {

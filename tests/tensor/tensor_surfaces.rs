@@ -12,7 +12,8 @@ use common::random_tensors::{Xorshift64Star as Rng, clamped_knots};
 use revolve::nalgebra::{Point3, Point4, Vector3};
 use revolve::{
     BSpline, BSplineSurface, BezierPatch, BezierSurface, Curve, Error, Intersect,
-    NewtonIntersector, NurbsSurface, PatchBounds, RationalBezierPatch, Ray, Surface,
+    NewtonIntersector, NurbsSurface, ParameterDirection, PatchBounds, RationalBezierPatch, Ray,
+    Surface,
 };
 
 fn close(a: Point3<f64>, b: Point3<f64>, tol: f64) -> bool {
@@ -394,7 +395,14 @@ fn knot_insertion_keeps_the_surface() {
         .unwrap();
     let b2 = b.insert_knot_u(0.42, 3).unwrap().insert_knot_v(0.0, 1);
     // v = 0 is a clamped end: already of multiplicity q + 1.
-    assert!(matches!(b2, Err(Error::KnotMultiplicity { .. })), "{b2:?}");
+    assert!(
+        matches!(
+            &b2,
+            Err(Error::SurfaceKnots { direction: ParameterDirection::V, error })
+                if matches!(**error, Error::KnotMultiplicity { .. })
+        ),
+        "{b2:?}"
+    );
     let b2 = b
         .insert_knot_u(0.42, 3)
         .unwrap()
@@ -409,13 +417,17 @@ fn knot_insertion_keeps_the_surface() {
         assert!(close(n2.eval(u, v), n.eval(u, v), 1e-13));
         assert!(close(b2.eval(u, v), b.eval(u, v), 1e-13));
     }
-    assert!(matches!(
-        b.insert_knot_u(f64::NAN, 1),
-        Err(Error::ParameterOutOfDomain { .. })
+    let outside = |r: Result<_, Error>, d: ParameterDirection| {
+        matches!(r, Err(Error::SurfaceKnots { direction, error })
+            if direction == d && matches!(*error, Error::ParameterOutOfDomain { .. }))
+    };
+    assert!(outside(
+        b.insert_knot_u(f64::NAN, 1).map(|_| ()),
+        ParameterDirection::U
     ));
-    assert!(matches!(
-        n.insert_knot_v(1.5, 1),
-        Err(Error::ParameterOutOfDomain { .. })
+    assert!(outside(
+        n.insert_knot_v(1.5, 1).map(|_| ()),
+        ParameterDirection::V
     ));
 }
 
@@ -593,14 +605,13 @@ fn newton_intersector_finds_bilinear_hits() {
 #[test]
 fn bad_input_gives_named_errors() {
     let p = Point3::new(0.0, 0.0, 0.0);
-    assert!(matches!(
-        BezierSurface::new(vec![]),
-        Err(Error::NoControlPoints)
-    ));
+    assert!(matches!(BezierSurface::new(vec![]), Err(Error::EmptyGrid)));
     assert!(matches!(
         BezierSurface::new(vec![vec![]]),
-        Err(Error::NoControlPoints)
+        Err(Error::EmptyGrid)
     ));
+    let e = BezierSurface::new(vec![]).unwrap_err().to_string();
+    assert!(e.contains("surface") && !e.contains("curve"), "{e}");
     assert!(matches!(
         BezierSurface::new(vec![vec![p, p], vec![p]]),
         Err(Error::RaggedGrid {
@@ -612,17 +623,26 @@ fn bad_input_gives_named_errors() {
     let nan = Point3::new(0.0, f64::NAN, 0.0);
     assert!(matches!(
         BezierSurface::new(vec![vec![p, p], vec![p, nan]]),
-        Err(Error::NonFinitePoint { index: 3 })
+        Err(Error::NonFiniteGridPoint { row: 1, column: 1 })
     ));
+    // The example: a NaN at row 1, column 2 of a 3×3 grid.
+    let mut grid = vec![vec![p; 3]; 3];
+    grid[1][2] = nan;
+    let e = BezierSurface::new(grid).unwrap_err().to_string();
+    assert!(e.contains("row 1, column 2"), "{e}");
     let inf = Point3::new(f64::INFINITY, 0.0, 0.0);
     assert!(matches!(
         BezierSurface::new(vec![vec![inf]]),
-        Err(Error::NonFinitePoint { index: 0 })
+        Err(Error::NonFiniteGridPoint { row: 0, column: 0 })
     ));
     let big = Point3::new(1e101, 0.0, 0.0);
     assert!(matches!(
         BezierSurface::new(vec![vec![p, big]]),
-        Err(Error::CoordinateTooLarge { index: 1, .. })
+        Err(Error::GridCoordinateTooLarge {
+            row: 0,
+            column: 1,
+            ..
+        })
     ));
     // Points near the limit whose hodographs overflow.
     let far = Point3::new(1e100, 0.0, 0.0);
@@ -647,14 +667,15 @@ fn bad_input_gives_named_errors() {
     let k3 = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
     assert!(matches!(
         BSplineSurface::new((2, 2), (k3.clone(), vec![0.0, 1.0]), grid.clone()),
-        Err(Error::KnotCount {
-            expected: 6,
-            found: 2
-        })
+        Err(Error::SurfaceKnots { direction: ParameterDirection::V, error })
+            if *error == Error::KnotCount { expected: 6, found: 2 }
     ));
+    let e = BSplineSurface::new((2, 2), (k3.clone(), vec![0.0, 1.0]), grid.clone()).unwrap_err();
+    assert!(e.to_string().contains("v knots"), "{e}");
     assert!(matches!(
         BSplineSurface::new((3, 2), (k3.clone(), k3.clone()), grid.clone()),
-        Err(Error::DegreeTooHigh { .. })
+        Err(Error::SurfaceKnots { direction: ParameterDirection::U, error })
+            if matches!(*error, Error::DegreeTooHigh { .. })
     ));
     assert!(matches!(
         BSplineSurface::new(
@@ -662,7 +683,8 @@ fn bad_input_gives_named_errors() {
             (vec![0.0, 0.0, 0.0, 1.0, 0.5, 1.0], k3.clone()),
             grid.clone()
         ),
-        Err(Error::DecreasingKnots { index: 4 })
+        Err(Error::SurfaceKnots { direction: ParameterDirection::U, error })
+            if *error == Error::DecreasingKnots { index: 4 }
     ));
     assert!(matches!(
         BSplineSurface::new(
@@ -670,11 +692,12 @@ fn bad_input_gives_named_errors() {
             (k3.clone(), vec![0.0, 0.0, 0.0, f64::NAN, 1.0, 1.0]),
             grid.clone()
         ),
-        Err(Error::NonFiniteKnot { index: 3 })
+        Err(Error::SurfaceKnots { direction: ParameterDirection::V, error })
+            if *error == Error::NonFiniteKnot { index: 3 }
     ));
     assert!(matches!(
         BSplineSurface::new((2, 2), (k3.clone(), k3.clone()), vec![]),
-        Err(Error::NoControlPoints)
+        Err(Error::EmptyGrid)
     ));
     let ones = vec![vec![1.0; 3]; 3];
     let knots = (k3.clone(), k3.clone());
@@ -682,19 +705,31 @@ fn bad_input_gives_named_errors() {
     w[1][2] = 0.0;
     assert!(matches!(
         NurbsSurface::new((2, 2), knots.clone(), grid.clone(), w),
-        Err(Error::InvalidWeight { index: 5, .. })
+        Err(Error::InvalidGridWeight {
+            row: 1,
+            column: 2,
+            ..
+        })
     ));
     let mut w = ones.clone();
     w[2][0] = -1.0;
     assert!(matches!(
         NurbsSurface::new((2, 2), knots.clone(), grid.clone(), w),
-        Err(Error::InvalidWeight { index: 6, .. })
+        Err(Error::InvalidGridWeight {
+            row: 2,
+            column: 0,
+            ..
+        })
     ));
     let mut w = ones.clone();
     w[0][0] = f64::NAN;
     assert!(matches!(
         NurbsSurface::new((2, 2), knots.clone(), grid.clone(), w),
-        Err(Error::InvalidWeight { index: 0, .. })
+        Err(Error::InvalidGridWeight {
+            row: 0,
+            column: 0,
+            ..
+        })
     ));
     let mut w = ones.clone();
     w[1].pop();

@@ -14,13 +14,14 @@
 //! `NurbsSurface`; a rational `BezierSurface` is the NURBS surface on the
 //! knots `0…0 1…1`). `uKnots` and `vKnots` are whole knot vectors,
 //! `rows + p + 1` and `cols + q + 1` numbers. Keys come in any order; all are
-//! required. `rows` and `cols` are at least 2 (a surface of degree 0 in a
-//! direction is a curve: nothing a ray could hit).
+//! required. `rows` and `cols` are at least 1, as revolve's constructors take
+//! them (a surface of one row or column is a curve, which a ray hits only
+//! where it passes through it).
 //!
 //! Errors are located like the curves' (see [`super::curves`]): a wrong
 //! number of control points at the first extra point's `[` (too many) or at
 //! `controls` (too few); revolve's own checks at the item they name — a
-//! control point (flat index `i·cols + j`) at its `[`, a weight at the
+//! control point (its row and column) at its `[`, a weight at the
 //! weight, a knot at the knot, a wrong knot count or multiplicity at
 //! `uKnots` / `vKnots`, too few rows or columns for the degree at `uDegree` /
 //! `vDegree` — else at the surface's keyword.
@@ -30,8 +31,8 @@
 
 use std::sync::Arc;
 
-use revolve::nalgebra::{Point1, Point3};
-use revolve::{BSpline, BSplineSurface, BezierSurface, Error, NurbsSurface};
+use revolve::nalgebra::Point3;
+use revolve::{BSplineSurface, BezierSurface, Error, NurbsSurface, ParameterDirection};
 
 use super::cursor::{Cursor, Result};
 use super::curves::{Control, control_points, numbers};
@@ -51,19 +52,11 @@ struct Direction {
     /// The degree and where its value is.
     degree: (usize, Pos),
     knots: Knots,
-    /// `uKnots` or `vKnots`.
-    name: &'static str,
 }
 
 impl Direction {
     fn knots(&self) -> Vec<f64> {
         self.knots.0.iter().map(|&(k, _)| k).collect()
-    }
-
-    /// Whether revolve refuses these knots for `count` control points (a
-    /// curve's knot checks are the surface's, direction by direction).
-    fn refused(&self, count: usize) -> bool {
-        BSpline::new(self.degree.0, self.knots(), vec![Point1::origin(); count]).is_err()
     }
 
     /// Where the knot error `e` of this direction points.
@@ -147,19 +140,18 @@ fn surface_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<SurfaceBlock>
             Direction {
                 degree: c.required(u_degree, "uDegree", name)?,
                 knots: c.required(u_knots, "uKnots", name)?,
-                name: "uKnots",
             },
             Direction {
                 degree: c.required(v_degree, "vDegree", name)?,
                 knots: c.required(v_knots, "vKnots", name)?,
-                name: "vKnots",
             },
         ))
     } else {
         None
     };
-    let rows = at_least_two(c, c.required(rows, "rows", name)?, "rows")?;
-    let cols = at_least_two(c, c.required(cols, "cols", name)?, "cols")?;
+    // `whole(…, 1)` has refused 0 already.
+    let rows = c.required(rows, "rows", name)?.0 as usize;
+    let cols = c.required(cols, "cols", name)?.0 as usize;
     let (controls, controls_at) = c.required(controls, "controls", name)?;
     let expected = rows * cols;
     if let Some(extra) = controls.get(expected) {
@@ -189,20 +181,6 @@ fn surface_block(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<SurfaceBlock>
         controls,
         directions,
     })
-}
-
-/// `rows` or `cols` (the value and where it is), which must be at least 2.
-fn at_least_two(c: &Cursor<'_>, (n, at): (u32, Pos), what: &str) -> Result<usize> {
-    if n < 2 {
-        return Err(c.error(
-            at,
-            format!(
-                "'{what}' must be at least 2 (a surface of degree 0 in a direction is a curve), \
-                 found {n}"
-            ),
-        ));
-    }
-    Ok(n as usize)
 }
 
 impl SurfaceBlock {
@@ -249,40 +227,38 @@ impl SurfaceBlock {
         }
     }
 
-    /// Where revolve's error `e` points (see the module docs) and, for a
-    /// knot error, which knot vector it is about.
-    fn locate(&self, e: &Error) -> (Pos, Option<&'static str>) {
-        let point = |index: usize| self.controls.get(index).map(|p| p.at);
+    /// Where revolve's error `e` points (see the module docs; revolve's
+    /// message names the row and column or the knot vector's direction).
+    fn locate(&self, e: &Error) -> Pos {
+        let control = |row: usize, column: usize| self.controls.get(row * self.cols + column);
         let at = match *e {
-            Error::NonFinitePoint { index } | Error::CoordinateTooLarge { index, .. } => {
-                point(index)
+            Error::NonFiniteGridPoint { row, column }
+            | Error::GridCoordinateTooLarge { row, column, .. } => {
+                control(row, column).map(|p| p.at)
             }
-            Error::InvalidWeight { index, .. } => self
-                .controls
-                .get(index)
-                .map(|p| p.weight.map_or(p.at, |(_, at)| at)),
+            Error::InvalidGridWeight { row, column, .. } => {
+                control(row, column).map(|p| p.weight.map_or(p.at, |(_, at)| at))
+            }
             _ => None,
         };
         if let Some(at) = at {
-            return (at, None);
+            return at;
         }
-        if let Some((u, v)) = &self.directions {
-            let direction = if u.refused(self.rows) { u } else { v };
-            if let Some(at) = direction.locate(e) {
-                return (at, Some(direction.name));
+        if let (Some((u, v)), Error::SurfaceKnots { direction, error }) = (&self.directions, e) {
+            let knots = match direction {
+                ParameterDirection::U => u,
+                ParameterDirection::V => v,
+            };
+            if let Some(at) = knots.locate(error) {
+                return at;
             }
         }
-        (self.at, None)
+        self.at
     }
 
     /// revolve's error `e` for this surface, located by [`Self::locate`].
     fn invalid(&self, c: &Cursor<'_>, e: Error) -> super::ParseError {
-        let (at, knots) = self.locate(&e);
-        let name = self.name;
-        match knots {
-            Some(knots) => c.error(at, format!("invalid {name} ({knots}): {e}")),
-            None => c.error(at, format!("invalid {name}: {e}")),
-        }
+        c.error(self.locate(&e), format!("invalid {}: {e}", self.name))
     }
 }
 

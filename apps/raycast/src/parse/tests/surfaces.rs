@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use revolve::nalgebra::Point3;
-use revolve::{BSplineSurface, Error, Surface};
+use revolve::{BSplineSurface, Error, ParameterDirection, Surface};
 
 use super::{assert_error, fail, in_group, objects_of};
 use crate::scene::{Shape, SurfaceBody};
@@ -156,22 +156,16 @@ fn too_many_control_points_are_refused_at_the_first_extra_one() {
     );
 }
 
+/// One rule with revolve's constructors: a surface of one row or one
+/// column is accepted (it is a curve); zero rows is refused at the count.
 #[test]
-fn fewer_than_two_rows_or_columns_are_refused_at_the_count() {
-    let line = "BezierSurface { rows 1 cols 2 controls [0 0 0] [0 1 0] }";
-    assert_error(
-        &in_group(line),
-        3,
-        column_of(line, "1", 0),
-        "'rows' must be at least 2",
-    );
-    let line = "BezierSurface { rows 2 cols 1 controls [0 0 0] [1 0 0] }";
-    assert_error(
-        &in_group(line),
-        3,
-        column_of(line, "1 controls", 0),
-        "'cols' must be at least 2",
-    );
+fn one_row_or_column_is_accepted_and_zero_refused() {
+    for line in [
+        "BezierSurface { rows 1 cols 2 controls [0 0 0] [0 1 0] }",
+        "BezierSurface { rows 2 cols 1 controls [0 0 0] [1 0 0] }",
+    ] {
+        assert_eq!(objects_of(line).len(), 1, "{line}");
+    }
     let line = "BezierSurface { rows 0 cols 2 controls }";
     assert_error(
         &in_group(line),
@@ -191,7 +185,8 @@ fn weights_that_are_not_positive_are_refused_at_the_weight() {
         let column = column_of(&line, &format!("1 0 0 {weight}"), 0) + 6;
         assert_eq!((e.line, e.column), (3, column), "{e}");
         assert!(
-            e.message.starts_with("invalid BezierSurface: weight 2 is "),
+            e.message
+                .starts_with("invalid BezierSurface: the surface's weight at row 1, column 0 is "),
             "{e}"
         );
     }
@@ -256,10 +251,13 @@ fn a_wrong_knot_count_is_refused_at_its_knot_vector() {
     assert_eq!(
         e.message,
         format!(
-            "invalid BsplineSurface (uKnots): {}",
-            Error::KnotCount {
-                expected: 6,
-                found: 5
+            "invalid BsplineSurface: {}",
+            Error::SurfaceKnots {
+                direction: ParameterDirection::U,
+                error: Box::new(Error::KnotCount {
+                    expected: 6,
+                    found: 5
+                })
             }
         )
     );
@@ -273,10 +271,13 @@ fn a_wrong_knot_count_is_refused_at_its_knot_vector() {
     assert_eq!(
         e.message,
         format!(
-            "invalid BsplineSurface (vKnots): {}",
-            Error::KnotCount {
-                expected: 4,
-                found: 5
+            "invalid BsplineSurface: {}",
+            Error::SurfaceKnots {
+                direction: ParameterDirection::V,
+                error: Box::new(Error::KnotCount {
+                    expected: 4,
+                    found: 5
+                })
             }
         )
     );
@@ -288,8 +289,9 @@ fn a_decreasing_knot_is_refused_at_the_knot() {
     let e = fail(&in_group(&line));
     assert_eq!((e.line, e.column), (3, column_of(&line, "0.25", 0)), "{e}");
     assert!(
-        e.message
-            .starts_with("invalid BsplineSurface (vKnots): knots must be non-decreasing"),
+        e.message.starts_with(
+            "invalid BsplineSurface: the surface's v knots: knots must be non-decreasing"
+        ),
         "{e}"
     );
 }
@@ -301,7 +303,8 @@ fn a_degree_too_high_for_the_rows_is_refused_at_the_degree() {
     let e = fail(&in_group(line));
     assert_eq!((e.line, e.column), (3, column_of(line, "3", 0)), "{e}");
     assert!(
-        e.message.starts_with("invalid BsplineSurface (uKnots): "),
+        e.message
+            .starts_with("invalid BsplineSurface: the surface's u knots: "),
         "{e}"
     );
 }
