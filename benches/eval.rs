@@ -137,7 +137,7 @@ fn bezier(c: &mut Criterion) {
     for order in 1..=3 {
         let id = BenchmarkId::new("order", order);
         bench_per_t(&mut group, id, cubic, &ts, move |c, t| {
-            c.nth_derivative(t, order)
+            c.nth_derivative(t, order).unwrap()
         });
     }
     group.finish();
@@ -201,7 +201,7 @@ fn bspline(c: &mut Criterion) {
     for order in 1..=3 {
         let id = BenchmarkId::new("order", order);
         bench_per_t(&mut group, id, curve, ts, move |c, t| {
-            c.nth_derivative(t, order)
+            c.nth_derivative(t, order).unwrap()
         });
     }
     group.finish();

@@ -111,6 +111,7 @@ pub mod curve;
 mod error;
 mod limits;
 mod mesh;
+pub mod prelude;
 pub mod ray;
 pub mod revolution;
 pub mod roots;

@@ -135,7 +135,7 @@ fn check_bezier<const D: usize>(degree: usize) {
         );
         for order in 0..=degree + 1 {
             assert_eq!(
-                allocations_in(|| c.nth_derivative(t, order)),
+                allocations_in(|| c.nth_derivative(t, order).unwrap()),
                 0,
                 "nth_derivative({order}): {what}"
             );
@@ -186,7 +186,7 @@ fn check_bspline<const D: usize>(p: usize) {
             );
             for order in 0..=p + 1 {
                 assert_eq!(
-                    allocations_in(|| c.nth_derivative(t, order)),
+                    allocations_in(|| c.nth_derivative(t, order).unwrap()),
                     0,
                     "nth_derivative({order}): {what}"
                 );
@@ -257,7 +257,7 @@ fn very_high_degree_bezier_eval_allocates() {
     let c = Bezier::new(points::<2>(111)).unwrap();
     let t = black_box(0.3);
     assert!(allocations_in(|| c.eval(t)) >= 1);
-    assert!(allocations_in(|| c.nth_derivative(t, 2)) >= 1);
+    assert!(allocations_in(|| c.nth_derivative(t, 2).unwrap()) >= 1);
     let s = BSpline::clamped(110, points::<2>(111)).unwrap();
     let u = black_box(s.domain().0);
     assert!(allocations_in(|| s.eval(u)) >= 1);

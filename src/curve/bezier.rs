@@ -29,7 +29,7 @@ use nalgebra::{Point, SVector, Unit};
 /// let parabola = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.5, 0.0), Point2::new(1.0, 1.0)])?;
 /// let p = parabola.eval(0.5);
 /// assert!((p.y - p.x * p.x).abs() < 1e-15);
-/// assert_eq!(parabola.nth_derivative(0.3, 2).y, 2.0);  // second derivative of t²
+/// assert_eq!(parabola.nth_derivative(0.3, 2)?.y, 2.0); // second derivative of t²
 /// # Ok::<(), revolve::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -111,8 +111,25 @@ impl<const D: usize> Bezier<D> {
     /// The `order`-th derivative `dᵏP/dtᵏ` at `t` (order 0 is the point as a
     /// vector). Orders above the degree give the zero vector.
     ///
-    /// No heap allocation up to degree 16.
-    pub fn nth_derivative(&self, t: f64, order: usize) -> SVector<f64, D> {
+    /// No heap allocation up to degree 16. Never an `Err`: the `Result` is the
+    /// shape every curve's `nth_derivative` has (a rational curve's refuses
+    /// orders beyond [`MAX_DERIVATIVE_ORDER`](crate::curve::MAX_DERIVATIVE_ORDER)).
+    ///
+    /// ```
+    /// use revolve::Bezier;
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let parabola = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.5, 0.0), Point2::new(1.0, 1.0)])?;
+    /// assert_eq!(parabola.nth_derivative(0.3, 2)?.y, 2.0);
+    /// assert_eq!(parabola.nth_derivative(0.3, 3)?.norm(), 0.0);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
+        Ok(self.derivative_of_order(t, order))
+    }
+
+    /// [`nth_derivative`](Self::nth_derivative)'s value.
+    fn derivative_of_order(&self, t: f64, order: usize) -> SVector<f64, D> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let n = self.points.len();
         if order >= n {
@@ -217,7 +234,7 @@ impl<const D: usize> Curve<D> for Bezier<D> {
     fn tangent(&self, t: f64) -> Option<Unit<SVector<f64, D>>> {
         let t = clamp_to_domain(t, (0.0, 1.0));
         let size = NaturalSize::of_points(&self.points, self.degree(), 1.0);
-        tangent_from_derivatives(size, t >= 1.0, |k| self.nth_derivative(t, k))
+        tangent_from_derivatives(size, t >= 1.0, |k| self.derivative_of_order(t, k))
     }
 
     #[inline]

@@ -183,7 +183,7 @@ impl<const D: usize> BSpline<D> {
     /// reference for [`Curve::eval`], which evaluates the precomputed Bézier
     /// form of the span; the two agree to rounding).
     pub fn eval_de_boor(&self, t: f64) -> Point<f64, D> {
-        Point::from(self.nth_derivative(t, 0))
+        Point::from(self.derivative_of_order(t, 0))
     }
 
     /// The `order`-th derivative `dᵏC/dtᵏ` at `t` (order 0 is the point as a
@@ -192,8 +192,14 @@ impl<const D: usize> BSpline<D> {
     /// Differences the span's control points `order` times with the knot
     /// spacing (the control points of the derivative spline, Piegl & Tiller
     /// eq. 3.8) and runs de Boor at degree `p − order`. No heap allocation up
-    /// to degree 16.
-    pub fn nth_derivative(&self, t: f64, order: usize) -> SVector<f64, D> {
+    /// to degree 16. Never an `Err` (the `Result` is the shape every curve's
+    /// `nth_derivative` has).
+    pub fn nth_derivative(&self, t: f64, order: usize) -> Result<SVector<f64, D>, Error> {
+        Ok(self.derivative_of_order(t, order))
+    }
+
+    /// [`nth_derivative`](Self::nth_derivative)'s value.
+    fn derivative_of_order(&self, t: f64, order: usize) -> SVector<f64, D> {
         let p = self.degree;
         if order > p {
             return SVector::zeros();
@@ -446,7 +452,7 @@ impl<const D: usize> Curve<D> for BSpline<D> {
         let domain = self.domain();
         let t = clamp_to_domain(t, domain);
         let size = NaturalSize::of_points(&self.points, self.degree, self.pieces.width_at(t));
-        tangent_from_derivatives(size, t >= domain.1, |k| self.nth_derivative(t, k))
+        tangent_from_derivatives(size, t >= domain.1, |k| self.derivative_of_order(t, k))
     }
 
     /// As [`eval`](Curve::eval); the derivative of the piece's Bézier form is

@@ -95,7 +95,7 @@ fn parabola_x_t_y_t_squared_values_and_derivatives() {
             let d = c.derivative(t);
             assert_close(d.x, 1.0, 1e-14, "x'");
             assert_close(d.y, 2.0 * t, 1e-14, "y'");
-            let d2 = c.nth_derivative(t, 2);
+            let d2 = c.nth_derivative(t, 2).unwrap();
             assert_close(d2.x, 0.0, 1e-13, "x''");
             assert_close(d2.y, 2.0, 1e-13, "y''");
         }
@@ -108,7 +108,7 @@ fn cubic_y_t_cubed_values_and_derivatives_of_every_order() {
         let c = monomial_curve_2d(n, 1, 3);
         for t in params() {
             for order in 0..=n + 2 {
-                let d = c.nth_derivative(t, order);
+                let d = c.nth_derivative(t, order).unwrap();
                 // Differencing n times multiplies by up to n!/(n−order)!; the
                 // tolerance scales with that growth of rounding.
                 let growth: f64 = ((n + 1 - order.min(n))..=n).map(|x| x as f64).product();
@@ -149,7 +149,7 @@ fn twisted_cubic_in_3d_is_exact_at_dyadic_parameters() {
         assert_close(d.x, 1.0, 1e-14, "x'");
         assert_close(d.y, 2.0 * t, 1e-14, "y'");
         assert_close(d.z, 3.0 * t * t, 1e-14, "z'");
-        let d3 = c.nth_derivative(t, 3);
+        let d3 = c.nth_derivative(t, 3).unwrap();
         assert_close(d3.x, 0.0, 1e-13, "x'''");
         assert_close(d3.y, 0.0, 1e-13, "y'''");
         assert_close(d3.z, 6.0, 1e-13, "z'''");
@@ -164,14 +164,14 @@ fn derivatives_above_the_degree_are_exactly_zero() {
     for t in params() {
         for order in [5, 6, 17, 1000, usize::MAX] {
             assert_eq!(
-                c.nth_derivative(t, order),
+                c.nth_derivative(t, order).unwrap(),
                 Vector2::zeros(),
                 "order {order}"
             );
         }
     }
     let constant = Bezier::new(vec![Point2::new(3.0, -4.0)]).unwrap();
-    assert_eq!(constant.nth_derivative(0.4, 1), Vector2::zeros());
+    assert_eq!(constant.nth_derivative(0.4, 1).unwrap(), Vector2::zeros());
     assert_eq!(constant.derivative(0.4), Vector2::zeros());
 }
 
@@ -179,7 +179,7 @@ fn derivatives_above_the_degree_are_exactly_zero() {
 fn zeroth_derivative_is_the_point() {
     let c = sample_curve();
     for t in params() {
-        assert_eq!(c.nth_derivative(t, 0), c.eval(t).coords);
+        assert_eq!(c.nth_derivative(t, 0).unwrap(), c.eval(t).coords);
     }
 }
 
@@ -200,8 +200,8 @@ fn end_tangents_are_n_times_first_and_last_legs() {
     let n = 4.0;
     assert_eq!(c.derivative(0.0), (pts[1] - pts[0]) * n);
     assert_eq!(c.derivative(1.0), (pts[4] - pts[3]) * n);
-    assert_eq!(c.nth_derivative(0.0, 1), (pts[1] - pts[0]) * n);
-    assert_eq!(c.nth_derivative(1.0, 1), (pts[4] - pts[3]) * n);
+    assert_eq!(c.nth_derivative(0.0, 1).unwrap(), (pts[1] - pts[0]) * n);
+    assert_eq!(c.nth_derivative(1.0, 1).unwrap(), (pts[4] - pts[3]) * n);
 }
 
 #[test]
@@ -210,8 +210,8 @@ fn end_second_derivative_is_n_n_minus_1_times_second_difference() {
     let p = c.points();
     let want0 = (p[2].coords - p[1].coords * 2.0 + p[0].coords) * 12.0;
     let want1 = (p[4].coords - p[3].coords * 2.0 + p[2].coords) * 12.0;
-    assert!((c.nth_derivative(0.0, 2) - want0).norm() < 1e-13);
-    assert!((c.nth_derivative(1.0, 2) - want1).norm() < 1e-13);
+    assert!((c.nth_derivative(0.0, 2).unwrap() - want0).norm() < 1e-13);
+    assert!((c.nth_derivative(1.0, 2).unwrap() - want1).norm() < 1e-13);
 }
 
 #[test]
@@ -220,7 +220,10 @@ fn eval_with_derivative_agrees_with_eval_and_derivative() {
     for t in params() {
         let (p, d) = c.eval_with_derivative(t);
         assert!((p - c.eval(t)).norm() < 1e-14, "t={t}");
-        assert!((d - c.nth_derivative(t, 1)).norm() < 1e-13, "t={t}");
+        assert!(
+            (d - c.nth_derivative(t, 1).unwrap()).norm() < 1e-13,
+            "t={t}"
+        );
         assert_eq!(d, c.derivative(t));
     }
 }
@@ -324,7 +327,7 @@ fn hodograph_evaluates_the_derivative() {
     let hh = h.hodograph();
     for t in params() {
         assert!((h.eval(t).coords - c.derivative(t)).norm() < 1e-13, "t={t}");
-        assert!((hh.eval(t).coords - c.nth_derivative(t, 2)).norm() < 1e-12);
+        assert!((hh.eval(t).coords - c.nth_derivative(t, 2).unwrap()).norm() < 1e-12);
     }
 }
 
@@ -350,7 +353,10 @@ fn parameters_outside_the_unit_interval_evaluate_at_the_nearest_end() {
     assert_eq!(c.eval(7.0), c.eval(1.0));
     assert_eq!(c.derivative(-3.0), c.derivative(0.0));
     assert_eq!(c.derivative(7.0), c.derivative(1.0));
-    assert_eq!(c.nth_derivative(1.5, 2), c.nth_derivative(1.0, 2));
+    assert_eq!(
+        c.nth_derivative(1.5, 2).unwrap(),
+        c.nth_derivative(1.0, 2).unwrap()
+    );
 }
 
 #[test]

@@ -348,7 +348,10 @@ fn nearest_point_on_the_curve_and_at_centres_of_curvature() {
             near.distance
         );
         // The centre of curvature at t0: C + n/κ.
-        let (d1, d2) = (curve.nth_derivative(t0, 1), curve.nth_derivative(t0, 2));
+        let (d1, d2) = (
+            curve.nth_derivative(t0, 1).unwrap(),
+            curve.nth_derivative(t0, 2).unwrap(),
+        );
         let cross = d1.x * d2.y - d1.y * d2.x;
         if cross.abs() < 1e-3 {
             continue;

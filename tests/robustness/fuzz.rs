@@ -67,6 +67,8 @@ struct Fuzz {
     /// Hits the intersectors returned (so that a target that never hits
     /// shows).
     hits: u64,
+    /// Aimed rays judged by the intersection contract (`aimed_case`).
+    aimed: u64,
 }
 
 thread_local! {
@@ -173,6 +175,7 @@ fn fuzz(name: &'static str, seeds: std::ops::Range<u64>, case: fn(&mut Fuzz)) {
                 failed: 0,
                 tally: BTreeMap::new(),
                 hits: 0,
+                aimed: 0,
             };
             for seed in range {
                 fuzz.seed = seed;
@@ -183,7 +186,13 @@ fn fuzz(name: &'static str, seeds: std::ops::Range<u64>, case: fn(&mut Fuzz)) {
                     fuzz.fail("(the fuzz case)", panic_message(&*payload));
                 }
             }
-            (fuzz.failures, fuzz.failed, fuzz.tally, fuzz.hits)
+            (
+                fuzz.failures,
+                fuzz.failed,
+                fuzz.tally,
+                fuzz.hits,
+                fuzz.aimed,
+            )
         })
         .expect("spawn the fuzz worker");
     let (mut last, mut since) = (u64::MAX, Instant::now());
@@ -201,7 +210,7 @@ fn fuzz(name: &'static str, seeds: std::ops::Range<u64>, case: fn(&mut Fuzz)) {
             );
         }
     }
-    let (failures, failed, tally, hits) = worker.join().unwrap_or_else(|payload| {
+    let (failures, failed, tally, hits, aimed) = worker.join().unwrap_or_else(|payload| {
         panic!(
             "{name}: the fuzz case itself failed at seed {} (after `{}`): {}",
             progress.seed.load(Ordering::Relaxed),
@@ -211,7 +220,8 @@ fn fuzz(name: &'static str, seeds: std::ops::Range<u64>, case: fn(&mut Fuzz)) {
     });
     let calls = progress.calls.load(Ordering::Relaxed);
     println!(
-        "fuzz {name}: {calls} calls, seeds {seeds:?}, {:.1} s, {hits} hits, {failed} failures",
+        "fuzz {name}: {calls} calls, seeds {seeds:?}, {:.1} s, {hits} hits, {aimed} aimed rays \
+         judged, {failed} failures",
         start.elapsed().as_secs_f64()
     );
     assert!(
@@ -846,7 +856,7 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
     // Bézier.
     let copy = points.clone();
     if let Some(Ok(c)) = f.call("Bezier::new", || Bezier::new(copy)) {
-        f.own_curve("Bezier", &c, |c, t, k| c.nth_derivative(t, k));
+        f.own_curve("Bezier", &c, |c, t, k| c.nth_derivative(t, k).unwrap());
         let t = f.number();
         if let Some(Ok((left, right))) = f.call("Bezier::subdivide", || c.subdivide(t)) {
             for half in [left, right] {
@@ -859,7 +869,7 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
                 });
                 let u = f.parameter((0.0, 1.0));
                 if let Some(d) = f.call("Bezier::nth_derivative", || {
-                    half.nth_derivative(u, 1 + (n % 4))
+                    half.nth_derivative(u, 1 + (n % 4)).unwrap()
                 }) {
                     f.check(finite(&d), "Bezier::subdivide", || {
                         format!("derivative {d:?}")
@@ -897,7 +907,7 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
     let Some(Ok(s)) = spline else {
         return;
     };
-    f.own_curve("BSpline", &s, |c, t, k| c.nth_derivative(t, k));
+    f.own_curve("BSpline", &s, |c, t, k| c.nth_derivative(t, k).unwrap());
     let t = f.parameter(s.domain());
     let times = match f.below(6) {
         0 => usize::MAX,
@@ -906,7 +916,7 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
     };
     if let Some(Ok(inserted)) = f.call("BSpline::insert_knot", || s.insert_knot(t, times)) {
         f.own_curve("BSpline after insert_knot", &inserted, |c, t, k| {
-            c.nth_derivative(t, k)
+            c.nth_derivative(t, k).unwrap()
         });
     }
     let order = if f.chance(4) { usize::MAX } else { f.below(4) };
@@ -932,7 +942,7 @@ fn curve_case<const D: usize>(f: &mut Fuzz) {
     let times = if f.chance(8) { usize::MAX } else { f.below(3) };
     if let Some(Ok(up)) = f.call("BSpline::elevate_degree", || s.elevate_degree(times)) {
         f.own_curve("BSpline after elevate_degree", &up, |c, t, k| {
-            c.nth_derivative(t, k)
+            c.nth_derivative(t, k).unwrap()
         });
     }
 
@@ -1318,6 +1328,10 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
             });
         }
     }
+    batch_case(f, &s, &bounds, profile);
+    if judged {
+        aimed_case(f, &s, &bounds, s.tolerance(), profile);
+    }
     if f.chance(8) {
         let scale = bounds.scale();
         let tolerance = match f.below(3) {
@@ -1347,6 +1361,34 @@ impl Fuzz {
                 mesh.bound
             )
         });
+        self.mesh_outputs(profile, mesh);
+    }
+
+    /// `Mesh::welded` (no more vertices, every index valid) and the OBJ and
+    /// STL writers (into memory, without error).
+    fn mesh_outputs(&mut self, kind: &str, mesh: &Mesh) {
+        if !self.chance(4) {
+            return;
+        }
+        if let Some(welded) = self.call("Mesh::welded", || mesh.welded()) {
+            let n = welded.positions.len();
+            let ok = n <= mesh.positions.len()
+                && welded.normals.len() == n
+                && welded.triangles.iter().flatten().all(|&i| (i as usize) < n);
+            self.check(ok, "Mesh::welded", || format!("{kind}: {n} vertices"));
+        }
+        let mut out = Vec::new();
+        if let Some(written) = self.call("Mesh::write_obj", || mesh.write_obj(&mut out)) {
+            self.check(written.is_ok(), "Mesh::write_obj", || {
+                format!("{kind}: {written:?}")
+            });
+        }
+        out.clear();
+        if let Some(written) = self.call("Mesh::write_stl", || mesh.write_stl(&mut out)) {
+            self.check(written.is_ok(), "Mesh::write_stl", || {
+                format!("{kind}: {written:?}")
+            });
+        }
     }
 }
 
@@ -1663,6 +1705,8 @@ fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &
             );
         }
     }
+    batch_case(f, s, &bounds, kind);
+    aimed_case(f, s, &bounds, s.tolerance(), kind);
     if f.chance(10) {
         let tolerance = if f.chance(3) {
             f.number()
@@ -1673,13 +1717,122 @@ fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &
             f.check(sane_mesh(&mesh), "tessellate", || {
                 format!("{kind}: a NaN in the mesh")
             });
+            f.mesh_outputs(kind, &mesh);
         }
+    }
+}
+
+/// `intersect_batch` over random rays and ranges (slices of unequal
+/// lengths too): each answer is `intersect`'s for its ray and range.
+fn batch_case<S: Intersect + ?Sized>(f: &mut Fuzz, s: &S, bounds: &Aabb, kind: &str) {
+    let n = f.below(6);
+    let rays: Vec<Ray> = (0..n).map(|_| ray_at(f, bounds)).collect();
+    let ranges: Vec<(f64, f64)> = (0..n + f.below(2))
+        .map(|_| {
+            if f.chance(5) {
+                (f.number(), f.number())
+            } else {
+                (0.0, f64::INFINITY)
+            }
+        })
+        .collect();
+    let mut hits = vec![None; n.saturating_sub(f.below(2))];
+    if f.call("Intersect::intersect_batch", || {
+        s.intersect_batch(&rays, &ranges, &mut hits)
+    })
+    .is_none()
+    {
+        return;
+    }
+    for ((ray, &(t_min, t_max)), hit) in rays.iter().zip(&ranges).zip(&hits) {
+        let single = s.intersect(ray, t_min, t_max);
+        f.check(
+            single.map(|h| h.t.to_bits()) == hit.map(|h| h.t.to_bits()),
+            "Intersect::intersect_batch",
+            || format!("{kind}: {ray:?} ({t_min}, {t_max}): batch {hit:?}, single {single:?}"),
+        );
+    }
+}
+
+/// The intersection contract on aimed rays: a ray through a surface point
+/// `S(u, v)` (interior of the domain, a normal there, crossing at more than
+/// about 6° from the tangent plane) hits, not beyond that point and on the
+/// ray. Judged for surfaces of size 1e-150 … 1e100 (the documented range and
+/// well above the underflow of squared sizes), rays from up to 1e6 sizes
+/// away with directions of length 1e-100 … 1e100. The accuracy owed is the
+/// surface's `tolerance` (relative to its box's scale), at best 1e-9.
+fn aimed_case<S: Surface + Intersect>(
+    f: &mut Fuzz,
+    s: &S,
+    bounds: &Aabb,
+    tolerance: &Tolerance,
+    kind: &str,
+) {
+    let size = bounds.extent().amax();
+    if !(1e-150..=1e100).contains(&size) {
+        return;
+    }
+    let [du, dv] = s.domain();
+    let (u, v) = (
+        du.0 + (du.1 - du.0) * f.rng.range(0.05, 0.95),
+        dv.0 + (dv.1 - dv.0) * f.rng.range(0.05, 0.95),
+    );
+    let (target, Some(normal)) = (s.eval(u, v), s.normal(u, v)) else {
+        return;
+    };
+    let unit = f.rng.direction();
+    if unit.dot(&normal).abs() < 0.1 {
+        return;
+    }
+    let dir = unit * 10f64.powf(f.rng.range(-100.0, 100.0));
+    let back = size * 10f64.powf(f.rng.range(0.0, 6.0)) / dir.norm();
+    let ray = Ray::new(target - dir * back, dir);
+    // The rounded origin puts the line `miss` from the target; the surface
+    // must reach well beyond that around it (its parameters do by 0.05 of
+    // the domain at least: judged where the partials carry that far) for a
+    // hit to be owed.
+    // (The difference loses the target below the origin's rounding.)
+    let miss = (target - ray.origin).cross(&unit).norm()
+        + 4.0 * f64::EPSILON * (ray.origin.coords.norm() + target.coords.norm());
+    let (su, sv) = s.partials(u, v);
+    let (du_len, dv_len) = (0.05 * (du.1 - du.0), 0.05 * (dv.1 - dv.0));
+    // The parameter rectangle's image is at least as wide as the smaller
+    // singular value of (S_u du, S_v dv) (not just the shorter partial: a
+    // needle-like piece has long, nearly parallel partials).
+    let (a, b) = (su * du_len, sv * dv_len);
+    // (Unit vectors in the cross product: its norm would overflow at 1e100.)
+    let reach_around = a.normalize().cross(&b.normalize()).norm() * a.norm().min(b.norm());
+    if !(miss <= 1e-3 * reach_around) {
+        return;
+    }
+    let Some(hit) = f.call("Intersect::intersect (aimed)", || {
+        s.intersect(&ray, 0.0, f64::INFINITY)
+    }) else {
+        return;
+    };
+    f.check(hit.is_some(), "Intersect::intersect (aimed)", || {
+        format!("{kind} of size {size:e}: {ray:?} aimed at ({u}, {v}) = {target:?} missed")
+    });
+    f.aimed += 1;
+    if let Some(hit) = hit {
+        let reach = size + hit.t * dir.norm();
+        let off = (ray.origin + ray.dir * hit.t - hit.point).norm();
+        // Beyond the aimed point by the miss and the tolerance at a 6°
+        // crossing at most.
+        let accuracy = tolerance.clamped().relative * bounds.scale();
+        let late = back * 1e-9 + 10.0 * (miss + accuracy) / dir.norm();
+        f.check(
+            hit.t <= back + late && off <= 1e-9 * reach + 10.0 * accuracy,
+            "Intersect::intersect (aimed)",
+            || format!("{kind} of size {size:e}: {ray:?} aimed at t = {back}: {hit:?}, {off:e} off the ray"),
+        );
     }
 }
 
 /// A model of patches: intersection without panic or NaN.
 fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
     let b = m.bounds();
+    batch_case(f, m, &b, "BezierPatches");
     for _ in 0..3 {
         let ray = ray_at(f, &b);
         if let Some(Some((k, hit))) = f.call("BezierPatches::intersect_patch", || {
@@ -1694,14 +1847,18 @@ fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
     }
 }
 
-/// The tensor surfaces' `tessellate`, behind one name.
+/// The tensor surfaces' `tessellate` and `tolerance`, behind one name.
 trait TensorMesh {
     fn mesh(&self, tolerance: f64) -> Result<Mesh, Error>;
+    fn tolerance(&self) -> &Tolerance;
 }
 
 impl TensorMesh for BezierSurface {
     fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
         self.tessellate(tolerance)
+    }
+    fn tolerance(&self) -> &Tolerance {
+        BezierSurface::tolerance(self)
     }
 }
 
@@ -1709,11 +1866,17 @@ impl TensorMesh for BSplineSurface {
     fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
         self.tessellate(tolerance)
     }
+    fn tolerance(&self) -> &Tolerance {
+        BSplineSurface::tolerance(self)
+    }
 }
 
 impl TensorMesh for NurbsSurface {
     fn mesh(&self, tolerance: f64) -> Result<Mesh, Error> {
         self.tessellate(tolerance)
+    }
+    fn tolerance(&self) -> &Tolerance {
+        NurbsSurface::tolerance(self)
     }
 }
 
