@@ -1802,7 +1802,8 @@ fn aimed_case<S: Surface + Intersect>(
     let (a, b) = (su * du_len, sv * dv_len);
     // (Unit vectors in the cross product: its norm would overflow at 1e100.)
     let reach_around = a.normalize().cross(&b.normalize()).norm() * a.norm().min(b.norm());
-    if !(miss <= 1e-3 * reach_around) {
+    let owed = miss <= 1e-3 * reach_around;
+    if !owed {
         return;
     }
     let Some(hit) = f.call("Intersect::intersect (aimed)", || {
