@@ -120,11 +120,18 @@ impl PatchTable {
             None => tensor_jet(&patch.net, cols, s, t, order),
         };
         let mut d = project_jet(&h, order);
-        // Chain rule for s = (u − u₀)/wu, t = (v − v₀)/wv.
+        // Chain rule for s = (u − u₀)/wu, t = (v − v₀)/wv: one division per
+        // order (a power of a tiny width would underflow to zero; the
+        // quotients stay within the derivative bound checked at construction).
         for (a, row) in d.iter_mut().enumerate() {
             for (b, x) in row.iter_mut().enumerate() {
                 if a + b >= 1 && a + b <= order {
-                    *x /= wu.powi(a as i32) * wv.powi(b as i32);
+                    for _ in 0..a {
+                        *x /= wu;
+                    }
+                    for _ in 0..b {
+                        *x /= wv;
+                    }
                 }
             }
         }
@@ -394,41 +401,90 @@ fn corner_limit(
     })
 }
 
-/// Checks that the first partials of every rational patch stay within
-/// [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE), as the rational curves check
-/// their pieces: along each row (in `v`) and column (in `u`) of a patch net,
-/// `|S′| ≤ (max|A′| + max|w′|·max|P|)/min w` with the hodographs bounded by
-/// the nets' differences times `degree / width` (convex hull property).
+/// Checks that the first and second partials of every rational patch stay
+/// within [`MAX_DERIVATIVE`](crate::MAX_DERIVATIVE), as the rational curves
+/// check their pieces. With `S = A/w` (homogeneous `(A, w)`) the quotient
+/// rule gives, direction by direction,
+/// `|S′| ≤ (|A′| + |w′|·|S|)/w`, `|S″| ≤ (|A″| + 2|w′|·|S′| + |w″|·|S|)/w`
+/// and `|S_uv| ≤ (|A_uv| + |w_u|·|S_v| + |w_v|·|S_u| + |w_uv|·|S|)/w`, with
+/// `w ≥ min w` and the derivatives of `A` and `w` bounded by the nets'
+/// differences times `degree / width` per order (convex hull property).
 ///
 /// # Errors
-/// [`Error::DerivativeOverflow`] (order 1).
+/// [`Error::DerivativeOverflow`] (order 1 or 2).
 pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
     let (p, q) = table.degrees;
     let cols = q + 1;
+    let within = |bound: f64| bound <= crate::MAX_DERIVATIVE;
     for patch in &table.patches {
         let net = &patch.net;
+        let at = |i: usize, j: usize| net[i * cols + j];
         let w_min = net.iter().fold(f64::INFINITY, |m, h| m.min(h.w));
         let p_max = net.iter().fold(0.0_f64, |m, h| m.max(h.wp.amax() / h.w));
-        // (degree / width, index step to the neighbour, along u?).
-        let along = [
-            ((p as f64) / (patch.u.1 - patch.u.0), cols, true),
-            ((q as f64) / (patch.v.1 - patch.v.0), 1, false),
-        ];
-        for (factor, step, in_u) in along {
-            let (mut a1, mut w1) = (0.0_f64, 0.0_f64);
-            for k in 0..net.len() {
-                let neighbour = k + step;
-                let paired = in_u || (k % cols) + 1 < cols;
-                if neighbour < net.len() && paired {
-                    a1 = a1.max((net[neighbour].wp - net[k].wp).amax());
-                    w1 = w1.max((net[neighbour].w - net[k].w).abs());
+        // Largest |Δ^k A| and |Δ^k w| of order k along a direction, and
+        // the mixed first difference.
+        let (mut d1, mut d2) = ([[0.0_f64; 2]; 2], [[0.0_f64; 2]; 2]);
+        let mut mixed = [0.0_f64; 2];
+        let record = |slot: &mut [f64; 2], a: Homogeneous<3>| {
+            slot[0] = slot[0].max(a.wp.amax());
+            slot[1] = slot[1].max(a.w.abs());
+        };
+        for i in 0..=p {
+            for j in 0..=q {
+                let h = at(i, j);
+                if i + 1 <= p {
+                    record(&mut d1[0], at(i + 1, j) - h);
+                    if j + 1 <= q {
+                        record(
+                            &mut mixed,
+                            at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + h,
+                        );
+                    }
+                }
+                if i + 2 <= p {
+                    record(&mut d2[0], at(i + 2, j) - at(i + 1, j) * 2.0 + h);
+                }
+                if j + 1 <= q {
+                    record(&mut d1[1], at(i, j + 1) - h);
+                }
+                if j + 2 <= q {
+                    record(&mut d2[1], at(i, j + 2) - at(i, j + 1) * 2.0 + h);
                 }
             }
-            let bound = (a1 * factor + w1 * factor * p_max) / w_min;
-            let within = bound <= crate::MAX_DERIVATIVE;
-            if !within {
+        }
+        // degree / width and (degree − 1) / width per direction (the
+        // factors apart: a squared tiny width would underflow).
+        let factor = [
+            (
+                p as f64 / (patch.u.1 - patch.u.0),
+                p.saturating_sub(1) as f64 / (patch.u.1 - patch.u.0),
+            ),
+            (
+                q as f64 / (patch.v.1 - patch.v.0),
+                q.saturating_sub(1) as f64 / (patch.v.1 - patch.v.0),
+            ),
+        ];
+        let mut first = [0.0_f64; 2];
+        for k in 0..2 {
+            let (f1, f2) = factor[k];
+            let (a1, w1) = (d1[k][0] * f1, d1[k][1] * f1);
+            first[k] = (a1 + w1 * p_max) / w_min;
+            if !within(first[k]) {
                 return Err(Error::DerivativeOverflow { order: 1 });
             }
+            let (a2, w2) = (d2[k][0] * f1 * f2, d2[k][1] * f1 * f2);
+            let second = (a2 + 2.0 * w1 * first[k] + w2 * p_max) / w_min;
+            if !within(second) {
+                return Err(Error::DerivativeOverflow { order: 2 });
+            }
+        }
+        let (fu, fv) = (factor[0].0, factor[1].0);
+        let (w_u, w_v) = (d1[0][1] * fu, d1[1][1] * fv);
+        let cross =
+            (mixed[0] * fu * fv + w_u * first[1] + w_v * first[0] + mixed[1] * fu * fv * p_max)
+                / w_min;
+        if !within(cross) {
+            return Err(Error::DerivativeOverflow { order: 2 });
         }
     }
     Ok(())

@@ -1597,6 +1597,7 @@ fn fuzz_tensor_surfaces() {
                     BSplineSurface::new(degrees, knots, grid)
                 }) {
                     tensor_case(f, &s, "BSplineSurface");
+                    bspline_surface_constructions(f, &s);
                 }
             }
             _ => {
@@ -1607,6 +1608,7 @@ fn fuzz_tensor_surfaces() {
                     NurbsSurface::new(degrees, knots, grid, weights)
                 }) {
                     tensor_case(f, &s, "NurbsSurface");
+                    nurbs_surface_constructions(f, &s);
                 }
             }
         }
@@ -1887,4 +1889,419 @@ fn sane_mesh(m: &Mesh) -> bool {
         && m.normals.iter().all(unit_vector)
         && m.uvs.iter().all(|(u, v)| u.is_finite() && v.is_finite())
         && m.bound.is_finite()
+}
+
+// ---------------------------------------------------------------------------
+// Serde input
+// ---------------------------------------------------------------------------
+
+/// What a mutated number becomes: extremes, out-of-range values and other
+/// JSON kinds.
+#[cfg(feature = "serde")]
+const JSON_REPLACEMENTS: [&str; 16] = [
+    "1e308",
+    "-1e308",
+    "5e-324",
+    "0",
+    "-0",
+    "1e101",
+    "-1e101",
+    "1e-320",
+    "1e400",
+    "123456789012345678901234567890",
+    "null",
+    "true",
+    "\"x\"",
+    "[]",
+    "{}",
+    "18446744073709551615",
+];
+
+/// Mutates a JSON text: a number replaced, a span deleted, an array element
+/// repeated, or the text cut short.
+#[cfg(feature = "serde")]
+fn mutate_json(f: &mut Fuzz, json: &str) -> String {
+    let bytes = json.as_bytes();
+    let at = |f: &mut Fuzz| f.below(bytes.len().max(1));
+    match f.below(5) {
+        0 | 1 => {
+            // The number that starts at or after a random position.
+            let start = (at(f)..bytes.len())
+                .find(|&i| {
+                    (bytes[i].is_ascii_digit() || bytes[i] == b'-')
+                        && (i == 0 || !bytes[i - 1].is_ascii_alphanumeric())
+                })
+                .unwrap_or(0);
+            let end = (start + 1..bytes.len())
+                .find(|&i| !matches!(bytes[i], b'0'..=b'9' | b'.' | b'e' | b'E' | b'-' | b'+'))
+                .unwrap_or(bytes.len());
+            let with = JSON_REPLACEMENTS[f.below(JSON_REPLACEMENTS.len())];
+            format!("{}{with}{}", &json[..start], &json[end.min(json.len())..])
+        }
+        2 => {
+            let start = at(f);
+            let end = (start + 1 + f.below(8)).min(json.len());
+            format!("{}{}", &json[..start], &json[end..])
+        }
+        3 => {
+            // Repeat the bracketed element that starts at a random '['.
+            let start = (at(f)..bytes.len())
+                .find(|&i| bytes[i] == b'[')
+                .unwrap_or(0);
+            let mut depth = 0;
+            let end = (start..bytes.len())
+                .find(|&i| {
+                    match bytes[i] {
+                        b'[' => depth += 1,
+                        b']' => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                })
+                .map_or(bytes.len(), |i| i + 1);
+            let element = &json[start..end];
+            format!("{}{element},{element}{}", &json[..start], &json[end..])
+        }
+        _ => json[..at(f)].to_string(),
+    }
+}
+
+/// Serializes `value`, mutates the text and reads it back as a `T`: no
+/// panic, no hang; what is accepted is usable (`usable`) and serializes.
+#[cfg(feature = "serde")]
+fn serde_case<T: serde::Serialize + serde::de::DeserializeOwned>(
+    f: &mut Fuzz,
+    value: &T,
+    kind: &'static str,
+    usable: fn(&T) -> bool,
+) {
+    let Ok(json) = serde_json::to_string(value) else {
+        f.fail("serde: serialize", format!("{kind} does not serialize"));
+        return;
+    };
+    for _ in 0..4 {
+        let mutated = mutate_json(f, &json);
+        if let Some(Ok(back)) = f.call("serde: deserialize", || serde_json::from_str::<T>(&mutated))
+        {
+            let ok = usable(&back) && serde_json::to_string(&back).is_ok();
+            f.check(ok, "serde: deserialize", || {
+                format!("{kind} accepted but not usable: {mutated}")
+            });
+        }
+    }
+}
+
+/// Serde input for every serializable type: valid objects of random shape,
+/// their JSON mutated (numbers replaced by extremes and other kinds, spans
+/// deleted, elements repeated, text cut short), read back.
+#[cfg(feature = "serde")]
+#[test]
+fn fuzz_serde_input() {
+    fn curve_ok<const D: usize, C: Curve<D>>(c: &C) -> bool {
+        let (a, b) = c.domain();
+        finite_point(&c.eval(a)) && finite_point(&c.eval(0.5 * (a + b)))
+    }
+    fn surface_ok<S: Surface + Intersect>(s: &S) -> bool {
+        let [u, v] = s.domain();
+        let b = s.bounds();
+        finite_point(&s.eval(0.5 * (u.0 + u.1), 0.5 * (v.0 + v.1)))
+            && sane_box(&b)
+            && s.intersect(
+                &Ray::new(Point3::new(0.3, 0.2, -1e3), Vector3::z()),
+                0.0,
+                f64::INFINITY,
+            )
+            .is_none_or(|h| sane_hit(&h, 0.0, f64::INFINITY))
+    }
+    fuzz("serde input", 0..20_000, |f| {
+        let scale = 10f64.powf(f.rng.range(-3.0, 3.0));
+        let n = 2 + f.below(5);
+        let points2: Vec<Point2<f64>> = (0..n)
+            .map(|_| {
+                Point2::new(
+                    f.rng.range(0.1, 1.0) * scale,
+                    f.rng.range(-1.0, 1.0) * scale,
+                )
+            })
+            .collect();
+        let degree = 1 + f.below(n - 1);
+        let clamped: Vec<f64> = (0..n + degree + 1)
+            .map(|i| (i.saturating_sub(degree)).min(n - degree) as f64)
+            .collect();
+        let weights: Vec<f64> = (0..n).map(|_| f.rng.range(0.2, 5.0)).collect();
+        let (rows, cols) = (2 + f.below(3), 2 + f.below(3));
+        let grid: Vec<Vec<Point3<f64>>> = (0..rows)
+            .map(|i| {
+                (0..cols)
+                    .map(|j| Point3::new(i as f64, j as f64, f.rng.range(-1.0, 1.0)) * scale)
+                    .collect()
+            })
+            .collect();
+        let grid_weights: Vec<Vec<f64>> = (0..rows)
+            .map(|_| (0..cols).map(|_| f.rng.range(0.2, 5.0)).collect())
+            .collect();
+        let bezier_knots = |m: usize| [vec![0.0; m], vec![1.0; m]].concat();
+        match f.below(10) {
+            0 => serde_case(
+                f,
+                &Bezier::new(points2).unwrap(),
+                "Bezier",
+                curve_ok::<2, _>,
+            ),
+            1 => serde_case(
+                f,
+                &BSpline::new(degree, clamped, points2).unwrap(),
+                "BSpline",
+                curve_ok::<2, _>,
+            ),
+            2 => serde_case(
+                f,
+                &Nurbs::new(degree, clamped, points2, weights).unwrap(),
+                "Nurbs",
+                curve_ok::<2, _>,
+            ),
+            3 => serde_case(
+                f,
+                &RationalBezier::new(points2, weights).unwrap(),
+                "RationalBezier",
+                curve_ok::<2, _>,
+            ),
+            4 => serde_case(
+                f,
+                &Revolution::new(Nurbs::new(degree, clamped, points2, weights).unwrap()),
+                "Revolution",
+                surface_ok,
+            ),
+            5 => serde_case(
+                f,
+                &BezierSurface::new(grid).unwrap(),
+                "BezierSurface",
+                surface_ok,
+            ),
+            6 => serde_case(
+                f,
+                &BSplineSurface::new(
+                    (rows - 1, cols - 1),
+                    (bezier_knots(rows), bezier_knots(cols)),
+                    grid,
+                )
+                .unwrap(),
+                "BSplineSurface",
+                surface_ok,
+            ),
+            7 => serde_case(
+                f,
+                &NurbsSurface::new(
+                    (rows - 1, cols - 1),
+                    (bezier_knots(rows), bezier_knots(cols)),
+                    grid,
+                    grid_weights,
+                )
+                .unwrap(),
+                "NurbsSurface",
+                surface_ok,
+            ),
+            8 => {
+                let patch = BezierSurface::new(grid).unwrap();
+                let model = BezierPatches::new(vec![patch.clone(), patch]).unwrap();
+                serde_case(f, &model, "BezierPatches", surface_ok_patches);
+            }
+            _ => {
+                serde_case(f, &Tolerance::relative(1e-9), "Tolerance", |t| {
+                    t.relative.is_finite()
+                });
+                let ray = Ray::new(Point3::new(1.0, 2.0, 3.0), Vector3::new(0.0, 0.0, -1.0));
+                serde_case(f, &ray, "Ray", |_| true);
+                let aabb = Aabb::new(Point3::origin(), Point3::new(1.0, 2.0, 3.0));
+                serde_case(f, &aabb, "Aabb", |_| true);
+            }
+        }
+    });
+}
+
+/// A model read back: its bounds and a ray are sane.
+#[cfg(feature = "serde")]
+fn surface_ok_patches(m: &BezierPatches) -> bool {
+    sane_box(&m.bounds())
+        && m.intersect(
+            &Ray::new(Point3::new(0.3, 0.2, -1e3), Vector3::z()),
+            0.0,
+            f64::INFINITY,
+        )
+        .is_none_or(|h| sane_hit(&h, 0.0, f64::INFINITY))
+}
+
+// ---------------------------------------------------------------------------
+// Constructions on tensor surfaces, Bernstein kernels
+// ---------------------------------------------------------------------------
+
+/// Clamped Bézier knots `0…0 1…1` of `m` each.
+fn bezier_knots(m: usize) -> Vec<f64> {
+    [vec![0.0; m], vec![1.0; m]].concat()
+}
+
+/// A B-spline surface's second partials (finite), its Bézier pieces
+/// (accepted by `BezierSurface::new`) and knot insertion (the same surface,
+/// or an error for a bad knot).
+fn bspline_surface_constructions(f: &mut Fuzz, s: &BSplineSurface) {
+    let [du, dv] = s.domain();
+    let (u, v) = (parameter(f, du), parameter(f, dv));
+    if let Some((a, b, c)) = f.call("BSplineSurface::second_partials", || {
+        s.second_partials(u, v)
+    }) {
+        f.check(
+            finite(&a) && finite(&b) && finite(&c),
+            "BSplineSurface::second_partials",
+            || format!("({u}, {v}): {a:?} {b:?} {c:?}"),
+        );
+    }
+    if f.chance(4) {
+        if let Some(pieces) = f.call("BSplineSurface::to_bezier_patches", || {
+            s.to_bezier_patches()
+        }) {
+            for piece in pieces {
+                let back = BezierSurface::new(piece.surface.points().to_vec());
+                f.check(back.is_ok(), "BSplineSurface::to_bezier_patches", || {
+                    format!("a piece is refused: {back:?}")
+                });
+            }
+        }
+    }
+    let along_u = f.chance(2);
+    let (t, times) = (parameter(f, if along_u { du } else { dv }), 1 + f.below(3));
+    let inserted = f.call("BSplineSurface::insert_knot", || {
+        if along_u {
+            s.insert_knot_u(t, times)
+        } else {
+            s.insert_knot_v(t, times)
+        }
+    });
+    if let Some(Ok(refined)) = inserted {
+        let scale = s.bounds().scale();
+        let (a, b) = (s.eval(u, v), refined.eval(u, v));
+        f.check(
+            (a - b).norm() <= 1e-9 * scale,
+            "BSplineSurface::insert_knot",
+            || format!("t {t} ×{times}: {a:?} became {b:?}"),
+        );
+    }
+}
+
+/// A NURBS surface's second partials, its rational Bézier pieces (accepted
+/// back by `NurbsSurface::new`) and knot insertion.
+fn nurbs_surface_constructions(f: &mut Fuzz, s: &NurbsSurface) {
+    let [du, dv] = s.domain();
+    let (u, v) = (parameter(f, du), parameter(f, dv));
+    if let Some((a, b, c)) = f.call("NurbsSurface::second_partials", || s.second_partials(u, v)) {
+        f.check(
+            finite(&a) && finite(&b) && finite(&c),
+            "NurbsSurface::second_partials",
+            || format!("({u}, {v}): {a:?} {b:?} {c:?}"),
+        );
+    }
+    if f.chance(4) {
+        let (p, q) = s.degrees();
+        if let Some(pieces) = f.call("NurbsSurface::to_bezier_patches", || s.to_bezier_patches()) {
+            for piece in pieces {
+                let back = NurbsSurface::new(
+                    (p, q),
+                    (bezier_knots(p + 1), bezier_knots(q + 1)),
+                    piece.points,
+                    piece.weights,
+                );
+                f.check(back.is_ok(), "NurbsSurface::to_bezier_patches", || {
+                    format!("a piece is refused: {back:?}")
+                });
+            }
+        }
+    }
+    let along_u = f.chance(2);
+    let (t, times) = (parameter(f, if along_u { du } else { dv }), 1 + f.below(3));
+    let inserted = f.call("NurbsSurface::insert_knot", || {
+        if along_u {
+            s.insert_knot_u(t, times)
+        } else {
+            s.insert_knot_v(t, times)
+        }
+    });
+    if let Some(Ok(refined)) = inserted {
+        let scale = s.bounds().scale();
+        let (a, b) = (s.eval(u, v), refined.eval(u, v));
+        f.check(
+            (a - b).norm() <= 1e-9 * scale,
+            "NurbsSurface::insert_knot",
+            || format!("t {t} ×{times}: {a:?} became {b:?}"),
+        );
+    }
+}
+
+/// The Bernstein kernels at any degree and parameter: `binomial` is never
+/// NaN, `bernstein` never NaN for a finite `t`, de Casteljau and subdivision
+/// of finite coefficients finite for `t` in `[0, 1]`, the power basis of
+/// low degree agreeing with de Casteljau.
+#[test]
+fn fuzz_bernstein_kernels() {
+    use revolve::bernstein::{
+        bernstein, binomial, de_casteljau, horner, subdivide, to_power_basis,
+    };
+    fuzz("bernstein kernels", 0..100_000, |f| {
+        let n = match f.below(4) {
+            0 => f.rng.next_u64() as usize,
+            1 => f.below(5000),
+            _ => f.below(30),
+        };
+        let i = if f.chance(2) {
+            f.below(n.saturating_add(2).min(1 << 20))
+        } else {
+            f.rng.next_u64() as usize
+        };
+        if let Some(c) = f.call("bernstein::binomial", || binomial(n, i)) {
+            f.check(!c.is_nan() && c >= 0.0, "bernstein::binomial", || {
+                format!("C({n}, {i}) = {c}")
+            });
+        }
+        let t = if f.chance(3) {
+            f.number()
+        } else {
+            f.rng.unit()
+        };
+        if let Some(b) = f.call("bernstein::bernstein", || bernstein(n, i, t)) {
+            f.check(
+                !t.is_finite() || !b.is_nan(),
+                "bernstein::bernstein",
+                || format!("B({n}, {i}, {t}) = {b}"),
+            );
+        }
+        let m = 1 + f.below(40);
+        let c: Vec<f64> = (0..m)
+            .map(|_| f.rng.range(-1.0, 1.0) * 10f64.powf(f.rng.range(-100.0, 100.0)))
+            .collect();
+        let t = f.rng.unit();
+        let mut work = c.clone();
+        if let Some(Some(v)) = f.call("bernstein::de_casteljau", || de_casteljau(&mut work, t)) {
+            f.check(v.is_finite(), "bernstein::de_casteljau", || {
+                format!("{c:?} at {t}: {v}")
+            });
+            if m <= 12 {
+                let power = to_power_basis(&c);
+                let scale = c.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+                let h = horner(&power, t).unwrap_or(f64::NAN);
+                f.check(
+                    (h - v).abs() <= 1e-9 * scale,
+                    "bernstein::to_power_basis",
+                    || format!("{c:?} at {t}: Horner {h} vs de Casteljau {v}"),
+                );
+            }
+        }
+        let (mut left, mut right) = (vec![0.0; m], vec![0.0; m]);
+        if let Some(true) = f.call("bernstein::subdivide", || {
+            subdivide(&c, t, &mut left, &mut right)
+        }) {
+            f.check(
+                left.iter().chain(&right).all(|x| x.is_finite()),
+                "bernstein::subdivide",
+                || format!("{c:?} at {t}"),
+            );
+        }
+    });
 }
