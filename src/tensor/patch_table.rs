@@ -432,9 +432,9 @@ pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
         for i in 0..=p {
             for j in 0..=q {
                 let h = at(i, j);
-                if i + 1 <= p {
+                if i < p {
                     record(&mut d1[0], at(i + 1, j) - h);
-                    if j + 1 <= q {
+                    if j < q {
                         record(
                             &mut mixed,
                             at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + h,
@@ -444,7 +444,7 @@ pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
                 if i + 2 <= p {
                     record(&mut d2[0], at(i + 2, j) - at(i + 1, j) * 2.0 + h);
                 }
-                if j + 1 <= q {
+                if j < q {
                     record(&mut d1[1], at(i, j + 1) - h);
                 }
                 if j + 2 <= q {
