@@ -78,7 +78,8 @@ impl Frame {
 /// Newton's method on `(e₁·(S − o), e₂·(S − o)) = 0` over `patch` (number
 /// `k`, with `cols` control points a row) from the
 /// centre of the box `bs × bt` (then its corners); the hit if a start converges to a
-/// point of the patch within the acceptance.
+/// point of the patch within the acceptance (else the first start that
+/// stopped within the acceptance without converging).
 pub(super) fn polish(
     patch: &Patch,
     k: usize,
@@ -93,12 +94,14 @@ pub(super) fn polish(
         (bs.0, bt.1),
         (bs.1, bt.0),
     ];
+    let mut fallback = None;
     for (s0, t0) in starts {
         let (mut s, mut t) = (s0, t0);
         // The jet at the last point evaluated, if Newton stopped there.
         let mut last = None;
         let mut previous = f64::INFINITY;
         let mut rising = 0;
+        let mut converged = false;
         for _ in 0..f.iterations.max(8) {
             let (sc, tc) = (s.clamp(-0.5, 1.5), t.clamp(-0.5, 1.5));
             let jet = jet(patch, cols, sc, tc);
@@ -112,6 +115,7 @@ pub(super) fn polish(
             let det = j00 * j11 - j01 * j10;
             let residual = (fa * fa + fb * fb).sqrt();
             if residual <= f.target || det == 0.0 || !det.is_finite() {
+                converged = residual <= f.target;
                 last = Some((sc, tc, jet));
                 break;
             }
@@ -130,7 +134,12 @@ pub(super) fn polish(
                 break;
             }
         }
-        if !((-SLACK..=1.0 + SLACK).contains(&s) && (-SLACK..=1.0 + SLACK).contains(&t)) {
+        // Past the sides by more than rounding: another piece's root,
+        // unless Newton converged there and the side's point is within the
+        // acceptance too (at a pole, where a side is one point, or a root
+        // just inside the neighbouring piece): then kept as past the side.
+        let within = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
+        if !(converged || (within(s) && within(t))) {
             continue;
         }
         let past_side = !((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
@@ -140,10 +149,22 @@ pub(super) fn polish(
             _ => jet(patch, cols, s, t),
         };
         if let Some(hit) = accept(patch, k, f, s, t, &jet) {
-            return Some(PatchHit { past_side, ..hit });
+            let hit = PatchHit { past_side, ..hit };
+            // A start that converged is at full precision; one that stopped
+            // within the acceptance (a singular Jacobian, as at a pole) is
+            // kept in case no other start converges.
+            if converged {
+                return Some(hit);
+            }
+            // Marked as unfinished, as a hit past the side is: the pieces
+            // beside it are polished for the converged root.
+            fallback = fallback.or(Some(PatchHit {
+                past_side: true,
+                ..hit
+            }));
         }
     }
-    None
+    fallback
 }
 
 /// The hit at `(s, t)` of `patch` (number `k`), from the jet there, if the

@@ -156,15 +156,30 @@ fn across_the_side(
             // this root and not another.
             let piece = &set.patches[j];
             let start = nearest_on_sides(piece, cols, &point);
-            let at = ((start.0, start.0), (start.1, start.1));
+            // Newton from just inside that point first (on a collapsed
+            // side, as at a pole, the side point itself has no Jacobian),
+            // then from the point.
+            let inward = |x: f64| (x - INWARD, x + INWARD);
+            let at = (clamp_range(inward(start.0)), clamp_range(inward(start.1)));
             let found = polish(piece, j, cols, frame, at);
-            if let Some(inside) = found.filter(|h| !h.past_side && (h.t - hit.t).abs() <= same) {
+            let fits = |h: &PatchHit| {
+                !h.past_side && (h.t - hit.t).abs() <= same && h.t > frame.t_floor && h.t < t_max
+            };
+            if let Some(inside) = found.filter(fits) {
                 better = inside;
             }
         }
         ControlFlow::Continue(t_best)
     });
     better
+}
+
+/// How far inside a piece's side Newton starts, in its parameters.
+const INWARD: f64 = 1e-6;
+
+/// A parameter range kept within `[0, 1]`.
+fn clamp_range((a, b): (f64, f64)) -> (f64, f64) {
+    (a.clamp(0.0, 1.0), b.clamp(0.0, 1.0))
 }
 
 /// The point `(s, t)` of the sides of `piece` (`cols` points a row)
@@ -366,7 +381,7 @@ pub(super) fn clip_search(
                 }
             }
             if image <= frame.acceptance.distance {
-                decide_by_corner(&mut nearest, patch, k, work[0], &cell, frame);
+                decide_by_corner(&mut nearest, (patch, k, q + 1), work[0], &cell, frame);
                 continue 'cells;
             }
             // A box that holds exactly one root (Krawczyk's test) is
@@ -422,7 +437,7 @@ pub(super) fn clip_search(
             // any other is halved in the wider parameter, the search going
             // on with the nearer half and leaving the other for later.
             if !(whole || thin) && extent(work, noise()) <= frame.acceptance.distance {
-                decide_by_corner(&mut nearest, patch, k, work[0], &cell, frame);
+                decide_by_corner(&mut nearest, (patch, k, q + 1), work[0], &cell, frame);
                 continue 'cells;
             }
             // A box all of whose image lies within the acceptance of the
@@ -501,18 +516,31 @@ fn corner_hit(patch: &Patch, k: usize, c: [f64; 4], (s, t): (f64, f64), dn: f64)
 /// first corner (control point `c`): that surface point is the hit if it
 /// is within the acceptance of the ray; if the box held a root, the corner
 /// would be within the box's extent of it, so a corner farther off rules
-/// a root out.
+/// a root out. The corner is a hit within the acceptance only: Newton's
+/// method from the box polishes it to full precision where it converges to
+/// the same point (within the acceptance along the ray; at a pole the root
+/// may lie at another `t` of the collapsed edge, even past the piece's side).
 fn decide_by_corner(
     nearest: &mut Nearest,
-    patch: &Patch,
-    k: usize,
+    (patch, k, cols): (&Patch, usize, usize),
     c: [f64; 4],
     cell: &SearchBox,
     frame: &Frame,
 ) {
     let off = c[0].hypot(c[1]) / c[3];
     if frame.acceptance.accepts(off) {
-        nearest.offer(corner_hit(patch, k, c, (cell.s.0, cell.t.0), frame.dn));
+        let corner = corner_hit(patch, k, c, (cell.s.0, cell.t.0), frame.dn);
+        let same_point =
+            |h: &PatchHit| (h.t - corner.t).abs() * frame.dn <= 2.0 * frame.acceptance.distance;
+        // Unpolished, the corner is marked unfinished (as a hit past a
+        // side is): the pieces beside it are polished for the root.
+        let hit = polish(patch, k, cols, frame, (cell.s, cell.t))
+            .filter(same_point)
+            .unwrap_or(PatchHit {
+                past_side: true,
+                ..corner
+            });
+        nearest.offer(hit);
     }
 }
 

@@ -94,7 +94,12 @@ fn a_ray_down_onto_the_lid_apex_hits_its_collapsed_edge_with_the_axis_normal() {
     // The collapsed edge's limit normal is the axis (the data orients the
     // lid's patches downward, so either sign is the surface's own).
     assert!(hit.normal.z.abs() > 1.0 - 1e-9, "patch {k}: {hit:?}");
-    assert!(hit.uv.0 == 0.0 || hit.uv.0 == 1.0 || hit.uv.1 == 0.0 || hit.uv.1 == 1.0);
+    // On the collapsed edge, up to the rounding of Newton's last step there
+    // (the point is the apex to 1e-15 either way).
+    let edge_gap = [hit.uv.0, 1.0 - hit.uv.0, hit.uv.1, 1.0 - hit.uv.1]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    assert!(edge_gap <= 1e-12, "{hit:?}");
 }
 
 #[test]
