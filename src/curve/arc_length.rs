@@ -6,6 +6,7 @@ use super::homogeneous::{
     Homogeneous, homogeneous_points, max_weight, project, project_with_derivative,
 };
 use super::query::validate_spans;
+use super::unit_scale::{UnitScale, spans_magnitude};
 use super::{RationalBezierSpan, max_abs_coordinate};
 use crate::bernstein::{self, subdivide};
 use crate::scratch::with_scratch;
@@ -419,13 +420,42 @@ pub(crate) fn arc_length<C: Curve<D> + ?Sized, const D: usize>(
     }
 }
 
-/// The arc length of rational Bézier spans.
+/// The arc length of rational Bézier spans; tiny ones (see [`UnitScale`])
+/// measured rescaled exactly, with the tolerance, and scaled back.
 fn spans_length<const D: usize>(
     spans: &[RationalBezierSpan<D>],
     tolerance: f64,
     rule: &Rule,
 ) -> Result<ArcLength, Error> {
     validate_spans(spans)?;
+    let Some(unit) = UnitScale::for_magnitude(spans_magnitude(spans)) else {
+        return spans_length_at_scale(spans, tolerance, rule);
+    };
+    let scaled: Vec<RationalBezierSpan<D>> = spans.iter().map(|s| unit.up_span(s)).collect();
+    // A tolerance that overflows when scaled is far above the curve's size.
+    let up = unit.up(tolerance).min(f64::MAX);
+    match spans_length_at_scale(&scaled, up, rule) {
+        Ok(arc) => Ok(ArcLength {
+            length: unit.down(arc.length),
+            error_bound: unit.down(arc.error_bound),
+            lower: unit.down(arc.lower),
+            upper: unit.down(arc.upper),
+            pieces: arc.pieces,
+        }),
+        Err(Error::ToleranceTooSmall { min, .. }) => Err(Error::ToleranceTooSmall {
+            tolerance,
+            min: unit.down(min),
+        }),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`spans_length`] for spans that are not tiny.
+fn spans_length_at_scale<const D: usize>(
+    spans: &[RationalBezierSpan<D>],
+    tolerance: f64,
+    rule: &Rule,
+) -> Result<ArcLength, Error> {
     let sources: Vec<SpanSource<D>> = spans.iter().map(SpanSource::new).collect();
     let polygons: Vec<f64> = sources.iter().map(|s| s.polygon(0.0, 1.0)).collect();
     let total: f64 = polygons.iter().sum();

@@ -36,6 +36,7 @@
 
 use super::CurveSample;
 use super::homogeneous::{Homogeneous, project, project_with_derivative};
+use super::unit_scale::UnitScale;
 use crate::bernstein::{Coefficient, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
@@ -81,6 +82,10 @@ pub(crate) trait FlatControl<const D: usize>: Coefficient {
     /// The point in space this value stands for.
     fn position(self) -> SVector<f64, D>;
 
+    /// The value whose position is this one's times `factor` (a weight
+    /// stays as it is).
+    fn scaled(self, factor: f64) -> Self;
+
     /// A bound on `max |C″(s)|` over the piece `c` in its own parameter
     /// `s ∈ [0, 1]`, where one is known.
     fn second_derivative_bound(c: &[Self]) -> Option<f64>;
@@ -96,6 +101,10 @@ impl<const D: usize> FlatControl<D> for SVector<f64, D> {
     #[inline]
     fn position(self) -> SVector<f64, D> {
         self
+    }
+
+    fn scaled(self, factor: f64) -> Self {
+        self * factor
     }
 
     fn second_derivative_bound(c: &[Self]) -> Option<f64> {
@@ -119,6 +128,13 @@ impl<const D: usize> FlatControl<D> for Homogeneous<D> {
     #[inline]
     fn position(self) -> SVector<f64, D> {
         project(self).coords
+    }
+
+    fn scaled(self, factor: f64) -> Self {
+        Homogeneous {
+            wp: self.wp * factor,
+            w: self.w,
+        }
     }
 
     fn second_derivative_bound(_: &[Self]) -> Option<f64> {
@@ -192,6 +208,42 @@ pub(crate) fn flatten_controls<'a, C: Curve<D>, S: 'a, T: FlatControl<D>, const 
     if tolerance < min {
         return Err(Error::ToleranceTooSmall { tolerance, min });
     }
+    // Tiny geometry is certified rescaled exactly (see `UnitScale`): the
+    // controls' positions, the tolerance and the scale times 2ᵏ, the bound
+    // and the jump samples' points times 2⁻ᵏ (the other samples are the
+    // curve's own evaluations).
+    match UnitScale::for_magnitude(scale) {
+        None => certify(curve, &pieces, load, tolerance, scale, None),
+        Some(unit) => {
+            let (f1, f2) = unit.up_factors();
+            let up = |s: &S| load(s).scaled(f1).scaled(f2);
+            let scaled_tolerance = unit.up(tolerance).min(f64::MAX);
+            let flat = certify(
+                curve,
+                &pieces,
+                up,
+                scaled_tolerance,
+                unit.up(scale),
+                Some(unit),
+            )?;
+            Ok(Flattening {
+                samples: flat.samples,
+                bound: unit.down(flat.bound),
+            })
+        }
+    }
+}
+
+/// [`flatten_controls`] at the scale given: `unit` scales the jump
+/// samples, which come from the controls, back to the curve's.
+fn certify<'a, C: Curve<D>, S: 'a, T: FlatControl<D>, const D: usize>(
+    curve: &C,
+    pieces: &[(&'a [S], (f64, f64))],
+    load: impl Fn(&S) -> T,
+    tolerance: f64,
+    scale: f64,
+    unit: Option<UnitScale>,
+) -> Result<Flattening<D>, Error> {
     let mut acc = Accumulator {
         curve,
         tolerance,
@@ -212,10 +264,11 @@ pub(crate) fn flatten_controls<'a, C: Curve<D>, S: 'a, T: FlatControl<D>, const 
         if next_start.is_some_and(|s| (s - end.coords).norm() > JOIN_ROUNDING * acc.scale) {
             // A jump (of any size beyond rounding): close this piece with its
             // limit from the left, so the polyline follows the jump.
+            let back = |v: SVector<f64, D>| unit.map_or(v, |u| u.down_vector(v));
             acc.samples.push(CurveSample {
                 t: b,
-                point: end,
-                derivative,
+                point: Point::from(back(end.coords)),
+                derivative: back(derivative),
             });
         }
     }

@@ -32,6 +32,7 @@ mod nurbs;
 mod pieces;
 mod query;
 mod rational_bezier;
+mod unit_scale;
 pub use arc_length::ArcLength;
 pub use bezier::{Bezier, BezierSpan};
 pub use bspline::BSpline;

@@ -4,6 +4,7 @@
 //! [`Curve::nearest_point`]).
 
 use super::homogeneous::max_weight;
+use super::unit_scale::{UnitScale, spans_magnitude};
 use super::{RationalBezier, RationalBezierSpan};
 use crate::bernstein::binomial_row;
 use crate::roots::{Root, find_roots_to};
@@ -141,6 +142,9 @@ pub struct NearestPoint<const D: usize> {
 #[derive(Debug, Clone)]
 pub struct CurveProjector<const D: usize> {
     spans: Vec<SpanForm<D>>,
+    /// The largest absolute control-point coordinate (tiny geometry is
+    /// queried rescaled, see [`UnitScale`]).
+    magnitude: f64,
 }
 
 /// One span and the `P`-independent data of its condition polynomial.
@@ -365,6 +369,7 @@ impl<const D: usize> CurveProjector<D> {
     pub fn from_spans(spans: Vec<RationalBezierSpan<D>>) -> Result<Self, Error> {
         validate_spans(&spans)?;
         Ok(CurveProjector {
+            magnitude: spans_magnitude(&spans),
             spans: spans.into_iter().map(SpanForm::new).collect(),
         })
     }
@@ -377,6 +382,31 @@ impl<const D: usize> CurveProjector<D> {
     /// or beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
     pub fn nearest(&self, p: &Point<f64, D>) -> Result<NearestPoint<D>, Error> {
         check_query_point(p)?;
+        // Tiny geometry (the curve and the point): the same query on the
+        // spans and the point rescaled exactly, the lengths scaled back.
+        if let Some(unit) = UnitScale::for_magnitude(self.magnitude.max(p.coords.amax())) {
+            let spans = self.spans.iter().map(|form| {
+                unit.up_span(&RationalBezierSpan {
+                    knots: form.knots,
+                    curve: form.curve.clone(),
+                })
+            });
+            let scaled = CurveProjector {
+                spans: spans.map(SpanForm::new).collect(),
+                magnitude: 1.0,
+            };
+            let near = scaled.nearest_at_scale(&Point::from(unit.up_vector(p.coords)));
+            return Ok(NearestPoint {
+                point: Point::from(unit.down_vector(near.point.coords)),
+                distance: unit.down(near.distance),
+                ..near
+            });
+        }
+        Ok(self.nearest_at_scale(p))
+    }
+
+    /// [`nearest`](Self::nearest) for geometry that is not tiny.
+    fn nearest_at_scale(&self, p: &Point<f64, D>) -> NearestPoint<D> {
         let mut best = Best::none();
         // Every span's ends first: a good bound to skip spans by.
         for i in 0..self.spans.len() {
@@ -403,7 +433,7 @@ impl<const D: usize> CurveProjector<D> {
                 best.offer(self.candidate(i, p, polished));
             }
         }
-        Ok(best.answer(true))
+        best.answer(true)
     }
 
     /// The candidate at the local parameter `s` of span `i`.

@@ -875,3 +875,51 @@ fn a_mesh_beyond_the_vertex_cap_says_so() {
     assert!(matches!(err, Error::ToleranceTooSmall { .. }), "{err:?}");
     assert!(err.to_string().contains("double precision"), "{err}");
 }
+
+/// Geometry below about 1e-154 broke the curve queries: squared distances
+/// underflow, so a curve of size 1e-200 had nearest distance 0, arc length
+/// 0 (bracket [0, 0]) and a flattening "certified" with one chord and a
+/// bound of 1e-14 of its size. Tiny geometry is now queried rescaled by a
+/// power of two (exact) and the lengths scaled back: each answer is the
+/// unit copy's answer times the scale (the copy at size 4 is the reference,
+/// scaled by powers of two so that only the queries' rounding differs).
+#[test]
+fn tiny_curves_are_measured_as_their_unit_copies() {
+    use revolve::Curve;
+    let unit_points = [p(0.0, 0.0), p(1.0, 2.0), p(3.0, 2.0), p(4.0, 0.0)];
+    let unit = Bezier::new(unit_points.to_vec()).unwrap();
+    let query = p(2.0, 3.0);
+    let near = unit.nearest_point(&query).unwrap();
+    let arc = unit.arc_length(1e-9).unwrap();
+    let flat = unit.flatten(1e-6).unwrap();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    for e in [-520, -600, -700, -900, -1000] {
+        let s = 2f64.powi(e);
+        let tiny = Bezier::new(unit_points.iter().map(|q| q * s).collect()).unwrap();
+        let n = tiny.nearest_point(&(query * s)).unwrap();
+        assert!(
+            close(n.distance / s, near.distance) && close(n.t, near.t),
+            "2^{e}: {n:?}"
+        );
+        let a = tiny.arc_length(1e-9 * s).unwrap();
+        assert!(close(a.length / s, arc.length), "2^{e}: {a:?}");
+        assert!(
+            close(a.lower / s, arc.lower) && close(a.upper / s, arc.upper),
+            "2^{e}: {a:?}"
+        );
+        let f = tiny.flatten(1e-6 * s).unwrap();
+        assert_eq!(f.samples.len(), flat.samples.len(), "2^{e}");
+        assert!(
+            close(f.bound / s, flat.bound),
+            "2^{e}: bound {:e}",
+            f.bound / s
+        );
+        // The unit copy's samples are the tiny curve's, scaled.
+        for (a, b) in f.samples.iter().zip(&flat.samples) {
+            assert!(
+                a.t == b.t && (a.point / s - b.point).norm() <= 1e-12,
+                "2^{e}"
+            );
+        }
+    }
+}
