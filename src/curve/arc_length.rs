@@ -5,8 +5,8 @@
 use super::homogeneous::{
     Homogeneous, homogeneous_points, max_weight, project, project_with_derivative,
 };
-use super::query::validate_spans;
-use super::unit_scale::{UnitScale, spans_magnitude};
+use super::query::{scaled_span, spans_magnitude, validate_spans};
+use super::unit_scale::UnitScale;
 use super::{RationalBezierSpan, max_abs_coordinate};
 use crate::bernstein::{self, subdivide};
 use crate::scratch::with_scratch;
@@ -431,7 +431,7 @@ fn spans_length<const D: usize>(
     let Some(unit) = UnitScale::for_magnitude(spans_magnitude(spans)) else {
         return spans_length_at_scale(spans, tolerance, rule);
     };
-    let scaled: Vec<RationalBezierSpan<D>> = spans.iter().map(|s| unit.up_span(s)).collect();
+    let scaled: Vec<RationalBezierSpan<D>> = spans.iter().map(|s| scaled_span(&unit, s)).collect();
     // A tolerance that overflows when scaled is far above the curve's size.
     let up = unit.up(tolerance).min(f64::MAX);
     match spans_length_at_scale(&scaled, up, rule) {

@@ -40,7 +40,7 @@ pub use elevate::{ELEVATION_ACCURACY, MAX_ELEVATED_DEGREE};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 pub use homogeneous::MAX_DERIVATIVE_ORDER;
-pub(crate) use homogeneous::{Homogeneous, quotient_rule};
+pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
 pub use query::{CurveProjector, NearestPoint};

@@ -4,8 +4,8 @@
 //! [`Curve::nearest_point`]).
 
 use super::homogeneous::max_weight;
-use super::unit_scale::{UnitScale, spans_magnitude};
-use super::{RationalBezier, RationalBezierSpan};
+use super::unit_scale::UnitScale;
+use super::{RationalBezier, RationalBezierSpan, max_abs_coordinate};
 use crate::bernstein::binomial_row;
 use crate::roots::{Root, find_roots_to};
 use crate::scratch::with_scratch;
@@ -386,10 +386,13 @@ impl<const D: usize> CurveProjector<D> {
         // spans and the point rescaled exactly, the lengths scaled back.
         if let Some(unit) = UnitScale::for_magnitude(self.magnitude.max(p.coords.amax())) {
             let spans = self.spans.iter().map(|form| {
-                unit.up_span(&RationalBezierSpan {
-                    knots: form.knots,
-                    curve: form.curve.clone(),
-                })
+                scaled_span(
+                    &unit,
+                    &RationalBezierSpan {
+                        knots: form.knots,
+                        curve: form.curve.clone(),
+                    },
+                )
             });
             let scaled = CurveProjector {
                 spans: spans.map(SpanForm::new).collect(),
@@ -465,6 +468,32 @@ impl<const D: usize> CurveProjector<D> {
                 }
             });
         });
+    }
+}
+
+/// The largest absolute control-point coordinate of `spans`.
+pub(super) fn spans_magnitude<const D: usize>(spans: &[RationalBezierSpan<D>]) -> f64 {
+    spans
+        .iter()
+        .map(|s| max_abs_coordinate(s.curve.points()))
+        .fold(0.0, f64::max)
+}
+
+/// `span` with its control points times `unit`'s power of two (weights
+/// unchanged): the same span at another scale, exactly.
+pub(super) fn scaled_span<const D: usize>(
+    unit: &UnitScale,
+    span: &RationalBezierSpan<D>,
+) -> RationalBezierSpan<D> {
+    let points = span
+        .curve
+        .points()
+        .iter()
+        .map(|p| Point::from(unit.up_vector(p.coords)))
+        .collect();
+    RationalBezierSpan {
+        knots: span.knots,
+        curve: RationalBezier::from_valid_parts(points, span.curve.weights().to_vec()),
     }
 }
 

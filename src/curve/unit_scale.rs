@@ -9,8 +9,7 @@
 //! overflows or underflows, so the rescaled problem is the same problem,
 //! and results scaled back are exact wherever they are normal numbers.
 
-use super::{RationalBezier, RationalBezierSpan, max_abs_coordinate};
-use nalgebra::{Point, SVector};
+use nalgebra::SVector;
 
 /// Geometry whose largest coordinate is below this is rescaled.
 const TINY: f64 = f64::from_bits((1023 - 256) << 52);
@@ -63,31 +62,6 @@ impl UnitScale {
     pub(crate) fn down_vector<const D: usize>(&self, v: SVector<f64, D>) -> SVector<f64, D> {
         v * self.down.0 * self.down.1
     }
-
-    /// A span with its control points times `2ᵏ` (weights unchanged).
-    pub(crate) fn up_span<const D: usize>(
-        &self,
-        span: &RationalBezierSpan<D>,
-    ) -> RationalBezierSpan<D> {
-        let points = span
-            .curve
-            .points()
-            .iter()
-            .map(|p| Point::from(self.up_vector(p.coords)))
-            .collect();
-        RationalBezierSpan {
-            knots: span.knots,
-            curve: RationalBezier::from_valid_parts(points, span.curve.weights().to_vec()),
-        }
-    }
-}
-
-/// The largest absolute control-point coordinate of `spans`.
-pub(crate) fn spans_magnitude<const D: usize>(spans: &[RationalBezierSpan<D>]) -> f64 {
-    spans
-        .iter()
-        .map(|s| max_abs_coordinate(s.curve.points()))
-        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! distances from a box, and the test that its point is a hit.
 
 use super::patch::{Patch, PatchHit, first_jet, tensor_jet};
-use crate::curve::Homogeneous;
+use crate::curve::{Homogeneous, power_of_two_near};
 use crate::ray::acceptance::Acceptance;
 use crate::{Ray, Tolerance};
 use nalgebra::Vector3;
@@ -28,6 +28,26 @@ pub(super) struct Frame {
     pub(super) t_min: f64,
     /// Largest control-point coordinate of the surface.
     pub(super) scale: f64,
+    /// The inverse of a power of two near `scale` (within the range of
+    /// `f64`): Newton's quantities are taken in units of that power.
+    pub(super) per_unit: f64,
+}
+
+/// A vector's length, scaled by its largest component first so that no
+/// size underflows or overflows the squares.
+trait ScaledNorm {
+    fn norm_scaled(&self) -> f64;
+}
+
+impl ScaledNorm for Vector3<f64> {
+    fn norm_scaled(&self) -> f64 {
+        let m = self.amax();
+        if m > 0.0 && m.is_finite() {
+            m * (self / m).norm()
+        } else {
+            self.norm()
+        }
+    }
 }
 impl Frame {
     /// The frame of `ray` searched from `t_min` on a surface of largest
@@ -71,6 +91,7 @@ impl Frame {
             t_floor: acceptance.t_floor(t_min, dn),
             t_min,
             scale,
+            per_unit: 1.0 / power_of_two_near(scale.clamp(1e-300, 1e300)),
         })
     }
 }
@@ -110,11 +131,20 @@ pub(super) fn polish(
             let xs = (hs.wp - x * hs.w) / h.w;
             let xt = (ht.wp - x * ht.w) / h.w;
             let r = x - f.o;
-            let (fa, fb) = (f.e1.dot(&r), f.e2.dot(&r));
-            let (j00, j01, j10, j11) = (f.e1.dot(&xs), f.e1.dot(&xt), f.e2.dot(&xs), f.e2.dot(&xt));
+            // In units of a power of two near the surface's scale (exact),
+            // so that the residual and the determinant neither underflow on
+            // tiny surfaces nor overflow on huge ones.
+            let k = f.per_unit;
+            let (fa, fb) = (f.e1.dot(&r) * k, f.e2.dot(&r) * k);
+            let (j00, j01, j10, j11) = (
+                f.e1.dot(&xs) * k,
+                f.e1.dot(&xt) * k,
+                f.e2.dot(&xs) * k,
+                f.e2.dot(&xt) * k,
+            );
             let det = j00 * j11 - j01 * j10;
-            let residual = (fa * fa + fb * fb).sqrt();
-            if residual <= f.target || det == 0.0 || !det.is_finite() {
+            let residual = fa.hypot(fb);
+            if residual <= f.target * k || det == 0.0 || !det.is_finite() {
                 converged = residual <= f.target;
                 last = Some((sc, tc, jet));
                 break;
@@ -181,7 +211,8 @@ pub(super) fn accept(
     let x = h.wp / h.w;
     let r = x - f.o;
     let along = f.dh.dot(&r);
-    let off = (r - f.dh * along).norm();
+    // Scaled before squaring: a tiny surface's distances would underflow.
+    let off = (r - f.dh * along).norm_scaled();
     // The point is uncertain by `accept` off the surface, so its ray
     // parameter by `accept/(|d|·cos)` for the angle of incidence: a
     // root that close to `t_min` is the ray's own start (a secondary

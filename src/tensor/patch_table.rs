@@ -7,7 +7,7 @@ use super::patch::{Jet, Patch, first_jet, project_jet, rounding_pad, tensor_jet}
 use super::search::{PatchSet, intersect};
 use super::search_pieces::SearchPieces;
 use crate::bernstein::restrict;
-use crate::curve::{Homogeneous, unit_direction};
+use crate::curve::{Homogeneous, power_of_two_near, unit_direction};
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 use std::sync::OnceLock;
@@ -201,18 +201,24 @@ impl PatchTable {
         su: Vector3<f64>,
         sv: Vector3<f64>,
     ) -> Option<Unit<Vector3<f64>>> {
-        let n = su.cross(&sv);
         // The typical size of a first derivative: net extent over the
         // parameter widths, times the degree.
         let [du, dv] = self.domain();
         let extent = self.extent.max(f64::MIN_POSITIVE);
         let typical = extent * (self.degrees.0.max(self.degrees.1).max(1) as f64)
             / (du.1 - du.0).min(dv.1 - dv.0);
+        // Derivatives in units of a power of two near the typical size
+        // (exact), so that products neither underflow on tiny surfaces
+        // (below about 1e-154 the cross product would be zero) nor
+        // overflow on huge ones.
+        let unit = power_of_two_near(typical);
+        let (su, sv, typical) = (su / unit, sv / unit, typical / unit);
+        let n = su.cross(&sv);
         let negligible = (1e-7 * typical) * (1e-7 * typical);
         if n.norm() > negligible {
             return unit_direction(n);
         }
-        let d = self.jet(u, v, 2);
+        let d = self.jet(u, v, 2).map(|row| row.map(|x| x / unit));
         // N(u + h·du, v + h·dv) = N + h·N₁ + O(h²) toward the domain's
         // centre, N₁ = du(S_uu×S_v + S_u×S_uv) + dv(S_uv×S_v + S_u×S_vv).
         let dir_u = (0.5 * (du.0 + du.1) - u) / (du.1 - du.0);
@@ -246,6 +252,7 @@ impl PatchTable {
             let h = 10f64.powi(-k);
             let (su, sv) =
                 self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
+            let (su, sv) = (su / unit, sv / unit);
             let n = su.cross(&sv);
             let resolved = n.norm() > 1e-6 * su.norm() * sv.norm();
             if !resolved {

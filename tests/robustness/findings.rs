@@ -437,15 +437,31 @@ type FirstHit = dyn Fn(&Ray) -> Option<revolve::Hit>;
 /// hit must exist, not beyond it, and on the ray.
 #[test]
 fn tensor_surfaces_up_to_1e100_are_hit_where_aimed() {
+    aimed_at_tensor_surfaces(92, Some(3e92), (6.0, 99.0), (-100.0, 100.0));
+}
+
+/// The same below 1e-154, down to 1e-300 (directions of length 1e-5 …
+/// 1e5, so that the ray parameters stay normal numbers): Newton's residual
+/// and determinant underflowed there, so hits stopped short of full
+/// precision (4e-10 beyond the aimed point) and were accepted by a
+/// distance that was zero after squaring; surface normals were `None`.
+#[test]
+fn tiny_tensor_surfaces_are_hit_where_aimed() {
+    aimed_at_tensor_surfaces(300, None, (-300.0, -154.0), (-5.0, 5.0));
+}
+
+/// 600 aimed rays at Bézier and NURBS surfaces of size `10^e`, `e` in
+/// `sizes` (the first of size `first` if given), with directions of length
+/// `10^e`, `e` in `lengths` (components up to 1e150 apart).
+fn aimed_at_tensor_surfaces(seed: u64, first: Option<f64>, sizes: (f64, f64), lengths: (f64, f64)) {
     use revolve::{BezierSurface, NurbsSurface, Surface};
     use revolve_testkit::Rng;
-    let mut rng = Rng(92);
+    let mut rng = Rng(seed);
     let mut aimed = 0;
     for case in 0..600 {
-        let scale = if case == 0 {
-            3e92
-        } else {
-            10f64.powf(rng.range(6.0, 99.0))
+        let scale = match first {
+            Some(scale) if case == 0 => scale,
+            _ => 10f64.powf(rng.range(sizes.0, sizes.1)),
         };
         let height_field = case % 2 == 0;
         let (rows, cols) = (2 + rng.below(4), 2 + rng.below(4));
@@ -496,7 +512,7 @@ fn tensor_surfaces_up_to_1e100_are_hit_where_aimed() {
                 dir[k] *= 10f64.powf(rng.range(-150.0, 0.0));
             }
         }
-        dir *= 10f64.powf(rng.range(-100.0, 100.0));
+        dir *= 10f64.powf(rng.range(lengths.0, lengths.1));
         let length = dir.norm();
         if !(length > 1e-140 && length < 1e140) || (dir / length).dot(&normal).abs() < 0.1 {
             continue;
@@ -508,11 +524,13 @@ fn tensor_surfaces_up_to_1e100_are_hit_where_aimed() {
             hit.t <= back * (1.0 + 1e-9),
             "case {case}: hit beyond the aimed point"
         );
-        // The ray's own rounding at its origin's distance is the floor here.
-        let off = (ray.origin + ray.dir * hit.t - hit.point).norm();
+        // The ray's own rounding at its origin's distance is the floor here
+        // (measured in units of the size: a tiny distance squared would
+        // underflow).
+        let off = ((ray.origin + ray.dir * hit.t - hit.point) / scale).norm();
         assert!(
-            off <= 1e-12 * (scale + hit.t * length),
-            "case {case}: {off:e} off the ray"
+            off <= 1e-12 * (1.0 + hit.t * length / scale),
+            "case {case}: {off:e} of the size off the ray"
         );
         aimed += 1;
     }
