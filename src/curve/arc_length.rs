@@ -2,6 +2,7 @@
 //! bracket and an error estimate: the method and what is rigorous are in the
 //! docs of [`ArcLength`].
 
+use super::gauss_remainder::gauss_remainder;
 use super::homogeneous::{
     Homogeneous, homogeneous_points, max_weight, project, project_with_derivative,
 };
@@ -18,6 +19,10 @@ const ORDER: usize = 16;
 
 /// Deepest halving of a piece.
 const MAX_DEPTH: u32 = 40;
+
+/// How many times a final piece may be halved for its bracket to be
+/// certified ([`gauss_remainder`]), at most `2^BRACKET_HALVINGS` parts.
+const BRACKET_HALVINGS: u32 = 3;
 
 /// Most pieces in all; beyond, remaining pieces are accepted as they are
 /// (and the reported `error_bound` says so). Each piece costs 33 rational
@@ -63,9 +68,15 @@ const FALLBACK_PIECES: usize = 16;
 ///   the piece's control polygon: de Casteljau subdivision (on homogeneous
 ///   points, each projected point lies on the segment between the two it
 ///   combines) never lengthens the polygon (triangle inequality), and the
-///   polygons converge to the curve. `lower` and `upper` are the sums over
-///   the final pieces, widened by a bound on the rounding of their
-///   vertices.
+///   polygons converge to the curve. Where the piece's speed is certified
+///   analytic in a Bernstein ellipse (its halves, quarters or eighths
+///   tried in turn: see `curve/gauss_remainder.rs`), the 16-point value
+///   plus and minus Gauss–Legendre's remainder bound and the evaluation's
+///   rounding bracket the piece far more tightly, and the tighter of the
+///   two brackets is taken. `lower` and `upper` are the sums over the final
+///   pieces, widened by a bound on the rounding of their vertices. A piece
+///   through a cusp, where the speed is not analytic, keeps its chord and
+///   polygon.
 /// - **Estimated**: `error_bound` is `Σ |G_l + G_r − G|` over the pieces
 ///   (the error of the whole-piece value, which for a smooth integrand
 ///   greatly exceeds that of the reported two-halves one) plus a bound on the
@@ -186,12 +197,21 @@ trait Source<const D: usize> {
     fn point(&self, s: f64) -> Result<Point<f64, D>, Error>;
     /// A rigorous upper bound on the length of `[s₀, s₁]` (infinite if none).
     fn polygon(&self, s0: f64, s1: f64) -> f64;
+
+    /// A rigorous bracket of the length of `[s₀, s₁]`, aiming at a width of
+    /// `2·target` (the piece's share of the tolerance), where one is
+    /// certified (`rule` integrates the speed).
+    fn bracket(&self, _piece: (f64, f64), _rule: &Rule, _target: f64) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// One rational Bézier span, its homogeneous coefficients (weights scaled
 /// so the largest is 1).
 struct SpanSource<const D: usize> {
     coeffs: Vec<Homogeneous<D>>,
+    /// [`SpanSource::rounding`] of the span.
+    rounding: f64,
 }
 
 impl<const D: usize> SpanSource<D> {
@@ -199,7 +219,10 @@ impl<const D: usize> SpanSource<D> {
         let weights = span.curve.weights();
         let top = max_weight(weights.iter().copied());
         let coeffs = homogeneous_points(span.curve.points(), weights.iter().map(|&w| w / top));
-        SpanSource { coeffs }
+        SpanSource {
+            coeffs,
+            rounding: Self::rounding(span),
+        }
     }
 
     /// A bound on the rounding of the speed per unit of parameter: the
@@ -215,6 +238,51 @@ impl<const D: usize> SpanSource<D> {
         });
         4.0 * (n + 1.0) * (n + 1.0) * f64::EPSILON * scale * (hi / lo)
     }
+
+    /// The piece `[s₀, s₁]`'s homogeneous coefficients on its own `[0, 1]`.
+    fn piece(&self, (s0, s1): (f64, f64)) -> Vec<Homogeneous<D>> {
+        let mut piece = self.coeffs.clone();
+        bernstein::restrict(&mut piece, (s0, s1));
+        piece
+    }
+
+    /// [`Source::bracket`]: the rule's value and its certified error
+    /// ([`gauss_remainder`]) plus the rounding; a piece whose error is not
+    /// certified, or not within `target`, is halved (down to `depth` more
+    /// levels) and the narrower bracket kept.
+    fn certified(
+        &self,
+        (s0, s1): (f64, f64),
+        rule: &Rule,
+        target: f64,
+        depth: u32,
+    ) -> Option<(f64, f64)> {
+        let remainder = gauss_remainder(&self.piece((s0, s1)), rule.len);
+        let here = remainder.ok().and_then(|error| {
+            let value = rule.integrate((s0, s1), |s| self.speed(s)).ok()?;
+            // Each speed within `rounding` (per unit of parameter), the
+            // weighted sum within SUM_ROUNDING of the value.
+            let slack = error + self.rounding * (s1 - s0) + SUM_ROUNDING * value.abs();
+            Some(((value - slack).max(0.0), value + slack))
+        });
+        let width = |b: Option<(f64, f64)>| b.map_or(f64::INFINITY, |(lo, hi)| hi - lo);
+        // Halvings about halve the spreads: hopeless pieces (a cusp, a
+        // turn much sharper than the piece) are not split in vain.
+        let hopeless = remainder.is_err_and(|too_wide| too_wide > f64::from(1u32 << depth));
+        if depth == 0 || hopeless || width(here) <= 2.0 * target {
+            return here;
+        }
+        let mid = 0.5 * (s0 + s1);
+        let halves = self
+            .certified((s0, mid), rule, 0.5 * target, depth - 1)
+            .zip(self.certified((mid, s1), rule, 0.5 * target, depth - 1))
+            .map(|((a, b), (c, d))| (a + c, b + d));
+        if width(halves) < width(here) {
+            halves
+        } else {
+            here
+        }
+    }
 }
 
 impl<const D: usize> Source<D> for SpanSource<D> {
@@ -228,6 +296,10 @@ impl<const D: usize> Source<D> for SpanSource<D> {
         Ok(project(
             bernstein::eval(&self.coeffs, s).unwrap_or_else(Homogeneous::zero),
         ))
+    }
+
+    fn bracket(&self, piece: (f64, f64), rule: &Rule, target: f64) -> Option<(f64, f64)> {
+        self.certified(piece, rule, target, BRACKET_HALVINGS)
     }
 
     /// The control polygon of the piece `[s₀, s₁]`, from two de Casteljau
@@ -354,9 +426,17 @@ impl<S> Adaptive<'_, S> {
         let mid = 0.5 * (s0 + s1);
         let chord = (p1 - p0).norm();
         let polygon = self.source.polygon(s0, s1);
+        // The piece's bracket: chord and polygon, tightened where the
+        // quadrature's error is certified.
+        let target = (self.allowed)(s1 - s0, polygon);
+        let bracket = || match self.source.bracket((s0, s1), self.rule, target) {
+            Some((lo, hi)) if lo.max(chord) <= hi.min(polygon) => (lo.max(chord), hi.min(polygon)),
+            _ => (chord, polygon),
+        };
         if mid <= s0 || mid >= s1 {
             // Too narrow to halve: accept the piece as it is.
-            tally.accept(whole, 0.0, chord, polygon);
+            let (lo, hi) = bracket();
+            tally.accept(whole, 0.0, lo, hi);
             return Ok(());
         }
         let (left, right) = (self.value((s0, mid))?, self.value((mid, s1))?);
@@ -366,7 +446,8 @@ impl<S> Adaptive<'_, S> {
         let bracketed = halves >= chord - slack && halves <= polygon + slack;
         let converged = difference <= (self.allowed)(s1 - s0, polygon) && bracketed;
         if converged || depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES {
-            tally.accept(halves, difference, chord, polygon);
+            let (lo, hi) = bracket();
+            tally.accept(halves, difference, lo, hi);
             return Ok(());
         }
         let pm = self.source.point(mid)?;

@@ -26,6 +26,7 @@ mod bspline;
 mod conic;
 mod elevate;
 mod flatten;
+mod gauss_remainder;
 mod homogeneous;
 mod knots;
 mod nurbs;
@@ -217,8 +218,9 @@ pub trait Curve<const D: usize> {
     ///
     /// Adaptive Gauss–Legendre quadrature (8 and 16 points per piece) on
     /// each [rational Bézier span](Curve::rational_bezier_spans); `lower ≤ L
-    /// ≤ upper` is rigorous (chords and control polygons of the final
-    /// pieces, positive weights), `error_bound` is an estimate (the
+    /// ≤ upper` is rigorous (Gauss–Legendre's certified remainder where the
+    /// speed is analytic, else chords and control polygons of the final
+    /// pieces; positive weights), `error_bound` is an estimate (the
     /// difference of the two rules plus rounding), at most `tolerance` and
     /// at most the bracket allows; see [`ArcLength`] and the
     /// `curve::arc_length` module docs. A curve without spans gets the same

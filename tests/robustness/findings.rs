@@ -941,3 +941,24 @@ fn tiny_curves_are_measured_as_their_unit_copies() {
         }
     }
 }
+
+/// The arc length's rigorous bracket was the final pieces' chords and
+/// control polygons: [16.97, 24.00] for a radius-3 circle whose error bound
+/// was 2.9e-13. Pieces whose speed is certified analytic in a Bernstein
+/// ellipse now get Gauss–Legendre's remainder bound instead: the bracket
+/// holds the closed forms (6π; √5/2 + asinh(2)/4 for the parabola y = x²)
+/// and is about as narrow as the estimated error.
+#[test]
+fn the_arc_length_bracket_is_as_tight_as_the_quadrature() {
+    use revolve::Curve;
+    let circle = Nurbs::circle(Point2::origin(), 3.0).unwrap();
+    let arc = circle.arc_length(3e-12).unwrap();
+    let exact = 6.0 * std::f64::consts::PI;
+    assert!(arc.lower <= exact && exact <= arc.upper, "{arc:?}");
+    assert!(arc.upper - arc.lower <= 1e-10, "{arc:?}");
+    let parabola = Bezier::new(vec![p(0.0, 0.0), p(0.5, 0.0), p(1.0, 1.0)]).unwrap();
+    let arc = parabola.arc_length(1e-12).unwrap();
+    let exact = 5f64.sqrt() / 2.0 + 2f64.asinh() / 4.0;
+    assert!(arc.lower <= exact && exact <= arc.upper, "{arc:?}");
+    assert!(arc.upper - arc.lower <= 1e-12, "{arc:?}");
+}
