@@ -1597,7 +1597,7 @@ fn fuzz_tensor_surfaces() {
                     BSplineSurface::new(degrees, knots, grid)
                 }) {
                     tensor_case(f, &s, "BSplineSurface");
-                    bspline_surface_constructions(f, &s);
+                    surface_constructions(f, &s);
                 }
             }
             _ => {
@@ -1608,7 +1608,7 @@ fn fuzz_tensor_surfaces() {
                     NurbsSurface::new(degrees, knots, grid, weights)
                 }) {
                     tensor_case(f, &s, "NurbsSurface");
-                    nurbs_surface_constructions(f, &s);
+                    surface_constructions(f, &s);
                 }
             }
         }
@@ -2140,98 +2140,90 @@ fn bezier_knots(m: usize) -> Vec<f64> {
     [vec![0.0; m], vec![1.0; m]].concat()
 }
 
-/// A B-spline surface's second partials (finite), its Bézier pieces
-/// (accepted by `BezierSurface::new`) and knot insertion (the same surface,
-/// or an error for a bad knot).
-fn bspline_surface_constructions(f: &mut Fuzz, s: &BSplineSurface) {
-    let [du, dv] = s.domain();
-    let (u, v) = (parameter(f, du), parameter(f, dv));
-    if let Some((a, b, c)) = f.call("BSplineSurface::second_partials", || {
-        s.second_partials(u, v)
-    }) {
-        f.check(
-            finite(&a) && finite(&b) && finite(&c),
-            "BSplineSurface::second_partials",
-            || format!("({u}, {v}): {a:?} {b:?} {c:?}"),
-        );
+/// What the construction checks need of a spline surface kind.
+trait SplineSurface: Surface + Intersect + Sized {
+    const NAME: &'static str;
+    fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>);
+    fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error>;
+    /// Each Bézier piece read back by its kind's constructor.
+    fn pieces_back(&self) -> Vec<Result<(), Error>>;
+}
+
+impl SplineSurface for BSplineSurface {
+    const NAME: &'static str = "BSplineSurface";
+    fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        self.second_partials(u, v)
     }
-    if f.chance(4) {
-        if let Some(pieces) = f.call("BSplineSurface::to_bezier_patches", || {
-            s.to_bezier_patches()
-        }) {
-            for piece in pieces {
-                let back = BezierSurface::new(piece.surface.points().to_vec());
-                f.check(back.is_ok(), "BSplineSurface::to_bezier_patches", || {
-                    format!("a piece is refused: {back:?}")
-                });
-            }
-        }
-    }
-    let along_u = f.chance(2);
-    let (t, times) = (parameter(f, if along_u { du } else { dv }), 1 + f.below(3));
-    let inserted = f.call("BSplineSurface::insert_knot", || {
+    fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error> {
         if along_u {
-            s.insert_knot_u(t, times)
+            self.insert_knot_u(t, times)
         } else {
-            s.insert_knot_v(t, times)
+            self.insert_knot_v(t, times)
         }
-    });
-    if let Some(Ok(refined)) = inserted {
-        let scale = s.bounds().scale();
-        let (a, b) = (s.eval(u, v), refined.eval(u, v));
-        f.check(
-            (a - b).norm() <= 1e-9 * scale,
-            "BSplineSurface::insert_knot",
-            || format!("t {t} ×{times}: {a:?} became {b:?}"),
-        );
+    }
+    fn pieces_back(&self) -> Vec<Result<(), Error>> {
+        self.to_bezier_patches()
+            .into_iter()
+            .map(|piece| BezierSurface::new(piece.surface.points().to_vec()).map(|_| ()))
+            .collect()
     }
 }
 
-/// A NURBS surface's second partials, its rational Bézier pieces (accepted
-/// back by `NurbsSurface::new`) and knot insertion.
-fn nurbs_surface_constructions(f: &mut Fuzz, s: &NurbsSurface) {
+impl SplineSurface for NurbsSurface {
+    const NAME: &'static str = "NurbsSurface";
+    fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        self.second_partials(u, v)
+    }
+    fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error> {
+        if along_u {
+            self.insert_knot_u(t, times)
+        } else {
+            self.insert_knot_v(t, times)
+        }
+    }
+    fn pieces_back(&self) -> Vec<Result<(), Error>> {
+        let (p, q) = self.degrees();
+        let knots = || (bezier_knots(p + 1), bezier_knots(q + 1));
+        self.to_bezier_patches()
+            .into_iter()
+            .map(|piece| {
+                NurbsSurface::new((p, q), knots(), piece.points, piece.weights).map(|_| ())
+            })
+            .collect()
+    }
+}
+
+/// A spline surface's second partials (finite), its Bézier pieces (each
+/// accepted back by its kind's constructor) and knot insertion (the same
+/// surface, or an error for a bad knot).
+fn surface_constructions<S: SplineSurface>(f: &mut Fuzz, s: &S) {
+    let kind = S::NAME;
     let [du, dv] = s.domain();
     let (u, v) = (parameter(f, du), parameter(f, dv));
-    if let Some((a, b, c)) = f.call("NurbsSurface::second_partials", || s.second_partials(u, v)) {
+    if let Some((a, b, c)) = f.call("second_partials", || s.second(u, v)) {
         f.check(
             finite(&a) && finite(&b) && finite(&c),
-            "NurbsSurface::second_partials",
-            || format!("({u}, {v}): {a:?} {b:?} {c:?}"),
+            "second_partials",
+            || format!("{kind} ({u}, {v}): {a:?} {b:?} {c:?}"),
         );
     }
     if f.chance(4) {
-        let (p, q) = s.degrees();
-        if let Some(pieces) = f.call("NurbsSurface::to_bezier_patches", || s.to_bezier_patches()) {
-            for piece in pieces {
-                let back = NurbsSurface::new(
-                    (p, q),
-                    (bezier_knots(p + 1), bezier_knots(q + 1)),
-                    piece.points,
-                    piece.weights,
-                );
-                f.check(back.is_ok(), "NurbsSurface::to_bezier_patches", || {
-                    format!("a piece is refused: {back:?}")
+        if let Some(back) = f.call("to_bezier_patches", || s.pieces_back()) {
+            for piece in back {
+                f.check(piece.is_ok(), "to_bezier_patches", || {
+                    format!("{kind}: a piece is refused: {piece:?}")
                 });
             }
         }
     }
     let along_u = f.chance(2);
     let (t, times) = (parameter(f, if along_u { du } else { dv }), 1 + f.below(3));
-    let inserted = f.call("NurbsSurface::insert_knot", || {
-        if along_u {
-            s.insert_knot_u(t, times)
-        } else {
-            s.insert_knot_v(t, times)
-        }
-    });
-    if let Some(Ok(refined)) = inserted {
+    if let Some(Ok(refined)) = f.call("insert_knot", || s.insert(along_u, t, times)) {
         let scale = s.bounds().scale();
         let (a, b) = (s.eval(u, v), refined.eval(u, v));
-        f.check(
-            (a - b).norm() <= 1e-9 * scale,
-            "NurbsSurface::insert_knot",
-            || format!("t {t} ×{times}: {a:?} became {b:?}"),
-        );
+        f.check((a - b).norm() <= 1e-9 * scale, "insert_knot", || {
+            format!("{kind}, t {t} ×{times}: {a:?} became {b:?}")
+        });
     }
 }
 
