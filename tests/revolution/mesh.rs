@@ -1355,8 +1355,9 @@ fn tolerance_too_small_reports_a_usable_minimum() {
     }
 }
 
-/// Just above the smallest accepted tolerance the number of angular steps
-/// hits its cap (65536) and the sagitta alone exceeds the tolerance.
+/// Near the smallest accepted tolerance the angular steps run into the
+/// vertex cap: each tolerance gives a mesh within it, or an error whose
+/// `min` is larger.
 #[test]
 fn bound_within_tolerance_near_the_smallest_tolerance() {
     // A unit cylinder (scale 1): flattening accepts tolerance/2 ≥ 1e-10.
