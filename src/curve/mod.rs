@@ -369,6 +369,18 @@ pub(crate) fn max_abs_coordinate<const D: usize>(points: &[Point<f64, D>]) -> f6
     points.iter().fold(0.0_f64, |m, p| m.max(p.coords.amax()))
 }
 
+/// `|v|`, computed as `m·|v/m|` with `m` the largest absolute component, so
+/// that no size of `v` underflows or overflows the squares (a length of
+/// 1e-200 would otherwise come out as 0).
+pub(crate) fn scaled_norm<const D: usize>(v: SVector<f64, D>) -> f64 {
+    let m = v.amax();
+    if m > 0.0 && m.is_finite() {
+        m * (v / m).norm()
+    } else {
+        v.norm()
+    }
+}
+
 /// `v / |v|`, computed as `(v/m) / |v/m|` with `m` the largest absolute
 /// component, so that no size of `v` overflows or underflows the norm.
 /// `None` for the zero vector and for vectors with a NaN or infinite

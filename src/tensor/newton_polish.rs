@@ -2,7 +2,7 @@
 //! distances from a box, and the test that its point is a hit.
 
 use super::patch::{Patch, PatchHit, first_jet, tensor_jet};
-use crate::curve::{Homogeneous, power_of_two_near};
+use crate::curve::{Homogeneous, power_of_two_near, scaled_norm};
 use crate::ray::acceptance::Acceptance;
 use crate::{Ray, Tolerance};
 use nalgebra::Vector3;
@@ -33,22 +33,6 @@ pub(super) struct Frame {
     pub(super) per_unit: f64,
 }
 
-/// A vector's length, scaled by its largest component first so that no
-/// size underflows or overflows the squares.
-trait ScaledNorm {
-    fn norm_scaled(&self) -> f64;
-}
-
-impl ScaledNorm for Vector3<f64> {
-    fn norm_scaled(&self) -> f64 {
-        let m = self.amax();
-        if m > 0.0 && m.is_finite() {
-            m * (self / m).norm()
-        } else {
-            self.norm()
-        }
-    }
-}
 impl Frame {
     /// The frame of `ray` searched from `t_min` on a surface of largest
     /// control-point coordinate `scale`, at the tolerance `tol`; `None`
@@ -212,7 +196,7 @@ pub(super) fn accept(
     let r = x - f.o;
     let along = f.dh.dot(&r);
     // Scaled before squaring: a tiny surface's distances would underflow.
-    let off = (r - f.dh * along).norm_scaled();
+    let off = scaled_norm(r - f.dh * along);
     // The point is uncertain by `accept` off the surface, so its ray
     // parameter by `accept/(|d|·cos)` for the angle of incidence: a
     // root that close to `t_min` is the ray's own start (a secondary

@@ -2040,7 +2040,6 @@ fn fuzz_serde_input() {
         let grid_weights: Vec<Vec<f64>> = (0..rows)
             .map(|_| (0..cols).map(|_| f.rng.range(0.2, 5.0)).collect())
             .collect();
-        let bezier_knots = |m: usize| [vec![0.0; m], vec![1.0; m]].concat();
         match f.below(10) {
             0 => serde_case(
                 f,
@@ -2149,18 +2148,26 @@ trait SplineSurface: Surface + Intersect + Sized {
     fn pieces_back(&self) -> Vec<Result<(), Error>>;
 }
 
-impl SplineSurface for BSplineSurface {
-    const NAME: &'static str = "BSplineSurface";
-    fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        self.second_partials(u, v)
-    }
-    fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error> {
-        if along_u {
-            self.insert_knot_u(t, times)
-        } else {
-            self.insert_knot_v(t, times)
+/// The members the spline surface kinds share (their inherent methods have
+/// the same names).
+macro_rules! spline_surface_members {
+    ($name:literal) => {
+        const NAME: &'static str = $name;
+        fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+            self.second_partials(u, v)
         }
-    }
+        fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error> {
+            if along_u {
+                self.insert_knot_u(t, times)
+            } else {
+                self.insert_knot_v(t, times)
+            }
+        }
+    };
+}
+
+impl SplineSurface for BSplineSurface {
+    spline_surface_members!("BSplineSurface");
     fn pieces_back(&self) -> Vec<Result<(), Error>> {
         self.to_bezier_patches()
             .into_iter()
@@ -2170,17 +2177,7 @@ impl SplineSurface for BSplineSurface {
 }
 
 impl SplineSurface for NurbsSurface {
-    const NAME: &'static str = "NurbsSurface";
-    fn second(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        self.second_partials(u, v)
-    }
-    fn insert(&self, along_u: bool, t: f64, times: usize) -> Result<Self, Error> {
-        if along_u {
-            self.insert_knot_u(t, times)
-        } else {
-            self.insert_knot_v(t, times)
-        }
-    }
+    spline_surface_members!("NurbsSurface");
     fn pieces_back(&self) -> Vec<Result<(), Error>> {
         let (p, q) = self.degrees();
         let knots = || (bezier_knots(p + 1), bezier_knots(q + 1));
