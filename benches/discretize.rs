@@ -1,10 +1,13 @@
 //! Discretization benches: uniform sampling (`Curve::discretize`) and adaptive
-//! flattening to a tolerance (`flatten`).
+//! flattening to a tolerance (`flatten`), and the arc length with its
+//! certified bracket (`arc_length`).
 //!
 //! `discretize/*` measures one whole call; its throughput line is samples per
 //! second (`segments + 1` samples per call). `flatten_*` measures one whole
 //! flattening at each tolerance and prints, once per tolerance and outside the
 //! timed loop, how many samples it produced and the bound it certified.
+//! `arc_length/*` measures one whole call and prints, once, the bracket's
+//! width and the number of pieces.
 //!
 //! Run: `cargo bench -p revolve-benches --bench discretize` (CI: `cargo bench -p revolve-benches --bench discretize -- --test`).
 
@@ -16,7 +19,7 @@ use std::time::Duration;
 use common::helix_points;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use revolve::nalgebra::{Point2, Point3};
-use revolve::{BSpline, Bezier, Curve, Flattening};
+use revolve::{BSpline, Bezier, Curve, Flattening, Nurbs};
 
 const SEGMENTS: [usize; 3] = [16, 256, 4096];
 
@@ -108,8 +111,44 @@ fn flatten(c: &mut Criterion) {
     });
 }
 
+/// One `arc_length` case: its bracket printed once, then timed.
+fn bench_arc_length<C: Curve<2>>(c: &mut Criterion, name: &str, curve: &C, tolerance: f64) {
+    let arc = curve.arc_length(tolerance).expect("a valid tolerance");
+    println!(
+        "arc_length/{name}: length {}, bracket width {:.2e}, error bound {:.2e}, {} pieces",
+        arc.length,
+        arc.upper - arc.lower,
+        arc.error_bound,
+        arc.pieces
+    );
+    c.bench_function(&format!("arc_length/{name}"), |b| {
+        b.iter(|| black_box(curve).arc_length(tolerance))
+    });
+}
+
+/// A circle (rational quadratics), a parabola, and a clamped cubic through
+/// 30 random points of the unit square (sharp turns, where the speed dips).
+fn arc_length(c: &mut Criterion) {
+    let circle = Nurbs::circle(Point2::origin(), 3.0).expect("a valid circle");
+    let parabola = Bezier::new(vec![
+        Point2::new(0.0, 0.0),
+        Point2::new(0.5, 0.0),
+        Point2::new(1.0, 1.0),
+    ])
+    .expect("a valid parabola");
+    let mut rng = common::Rng(4);
+    let points = (0..30)
+        .map(|_| Point2::new(rng.unit(), rng.unit()))
+        .collect();
+    let spline = BSpline::clamped(3, points).expect("a valid spline");
+    bench_arc_length(c, "circle_r3_tol_3e-12", &circle, 3e-12);
+    bench_arc_length(c, "parabola_tol_1e-12", &parabola, 1e-12);
+    bench_arc_length(c, "random_spline_30_tol_1e-10", &spline, 1e-10);
+    bench_arc_length(c, "random_spline_30_tol_1e-6", &spline, 1e-6);
+}
+
 fn config() -> Criterion {
-    // 27 benches; this keeps a full run under two minutes.
+    // 31 benches; this keeps a full run under two minutes.
     Criterion::default()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(2))
@@ -119,6 +158,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = discretize, flatten
+    targets = discretize, flatten, arc_length
 }
 criterion_main!(benches);

@@ -20,10 +20,6 @@ const ORDER: usize = 16;
 /// Deepest halving of a piece.
 const MAX_DEPTH: u32 = 40;
 
-/// How many times a final piece may be halved for its bracket to be
-/// certified ([`gauss_remainder`]), at most `2^BRACKET_HALVINGS` parts.
-const BRACKET_HALVINGS: u32 = 3;
-
 /// Most pieces in all; beyond, remaining pieces are accepted as they are
 /// (and the reported `error_bound` says so). Each piece costs 33 rational
 /// evaluations and two subdivisions, so this bounds a call's time: about
@@ -52,14 +48,15 @@ const FALLBACK_PIECES: usize = 16;
 /// Gauss–Legendre quadrature: a piece `[s₀, s₁]` whose 16-point value is
 /// `G` is split in halves with values `G_l`, `G_r`; the piece is accepted,
 /// contributing `G_l + G_r`, when `|G_l + G_r − G|` is within its share of
-/// the tolerance and `G_l + G_r` lies in the piece's rigorous bracket
-/// (below); otherwise each half is treated the same way (at most 40 levels
-/// deep, at most 2¹⁸ pieces in all). The speed `|C′(s)|` is evaluated from
-/// the span's own homogeneous coefficients (de Casteljau and the quotient
-/// rule), so its rounding does not grow with the depth. Comparing a rule
-/// with itself on the halves (rather than with a lower-order rule at
-/// nearly the same nodes) samples the integrand at new points, so a peak of
-/// the speed that one set of nodes misses shows up as a difference.
+/// the tolerance, `G_l + G_r` lies between the piece's chord and polygon,
+/// and the piece's rigorous bracket (below) is within twice that share;
+/// otherwise each half is treated the same way (at most 40 levels deep, at
+/// most 2¹³ pieces in all). The speed `|C′(s)|` is evaluated from the span's
+/// own homogeneous coefficients (de Casteljau and the quotient rule), so
+/// its rounding does not grow with the depth. Comparing a rule with itself
+/// on the halves (rather than with a lower-order rule at nearly the same
+/// nodes) samples the integrand at new points, so a peak of the speed that
+/// one set of nodes misses shows up as a difference.
 ///
 /// # What is rigorous and what is estimated
 /// - **Rigorous** (up to a rounding margin that is added): `lower ≤ L ≤
@@ -68,15 +65,15 @@ const FALLBACK_PIECES: usize = 16;
 ///   the piece's control polygon: de Casteljau subdivision (on homogeneous
 ///   points, each projected point lies on the segment between the two it
 ///   combines) never lengthens the polygon (triangle inequality), and the
-///   polygons converge to the curve. Where the piece's speed is certified
-///   analytic in a Bernstein ellipse (its halves, quarters or eighths
-///   tried in turn: see `curve/gauss_remainder.rs`), the 16-point value
-///   plus and minus Gauss–Legendre's remainder bound and the evaluation's
-///   rounding bracket the piece far more tightly, and the tighter of the
-///   two brackets is taken. `lower` and `upper` are the sums over the final
-///   pieces, widened by a bound on the rounding of their vertices. A piece
-///   through a cusp, where the speed is not analytic, keeps its chord and
-///   polygon.
+///   polygons converge to the curve. Where the speed on both halves is
+///   certified analytic in a Bernstein ellipse (see
+///   `curve/gauss_remainder.rs`), their values plus and minus
+///   Gauss–Legendre's remainder bound and the evaluation's rounding bracket
+///   the piece far more tightly, and the tighter of the two brackets is
+///   taken. `lower` and `upper` are the sums over the final pieces. Pieces
+///   near a cusp, where the speed is not analytic, are halved until their
+///   chord and polygon are close enough. So `upper − lower` is about the
+///   tolerance or less (unless the piece limits were reached).
 /// - **Estimated**: `error_bound` is `Σ |G_l + G_r − G|` over the pieces
 ///   (the error of the whole-piece value, which for a smooth integrand
 ///   greatly exceeds that of the reported two-halves one) plus a bound on the
@@ -197,13 +194,31 @@ trait Source<const D: usize> {
     fn point(&self, s: f64) -> Result<Point<f64, D>, Error>;
     /// A rigorous upper bound on the length of `[s₀, s₁]` (infinite if none).
     fn polygon(&self, s0: f64, s1: f64) -> f64;
+    /// A bound on the rounding of a piece's chord and of its polygon.
+    fn vertex_rounding(&self) -> f64 {
+        0.0
+    }
 
-    /// A rigorous bracket of the length of `[s₀, s₁]`, aiming at a width of
-    /// `2·target` (the piece's share of the tolerance), where one is
-    /// certified (`rule` integrates the speed).
-    fn bracket(&self, _piece: (f64, f64), _rule: &Rule, _target: f64) -> Option<(f64, f64)> {
+    /// Whether [`Source::bracket`] can certify pieces: where it can, a
+    /// piece is accepted only once its bracket is within its share of the
+    /// tolerance.
+    const CERTIFIES: bool = false;
+
+    /// A rigorous bracket of the total length of `parts` (each a parameter
+    /// interval and the rule's value on it), where the speed is certified
+    /// analytic on every part.
+    fn bracket(&self, _parts: &[((f64, f64), f64)]) -> Option<Certified> {
         None
     }
+}
+
+/// A certified bracket of a piece's length.
+#[derive(Debug, Clone, Copy)]
+struct Certified {
+    lower: f64,
+    upper: f64,
+    /// The quadrature's part of its half-width, the rest being rounding.
+    quadrature: f64,
 }
 
 /// One rational Bézier span, its homogeneous coefficients (weights scaled
@@ -238,51 +253,6 @@ impl<const D: usize> SpanSource<D> {
         });
         4.0 * (n + 1.0) * (n + 1.0) * f64::EPSILON * scale * (hi / lo)
     }
-
-    /// The piece `[s₀, s₁]`'s homogeneous coefficients on its own `[0, 1]`.
-    fn piece(&self, (s0, s1): (f64, f64)) -> Vec<Homogeneous<D>> {
-        let mut piece = self.coeffs.clone();
-        bernstein::restrict(&mut piece, (s0, s1));
-        piece
-    }
-
-    /// [`Source::bracket`]: the rule's value and its certified error
-    /// ([`gauss_remainder`]) plus the rounding; a piece whose error is not
-    /// certified, or not within `target`, is halved (down to `depth` more
-    /// levels) and the narrower bracket kept.
-    fn certified(
-        &self,
-        (s0, s1): (f64, f64),
-        rule: &Rule,
-        target: f64,
-        depth: u32,
-    ) -> Option<(f64, f64)> {
-        let remainder = gauss_remainder(&self.piece((s0, s1)), rule.len);
-        let here = remainder.ok().and_then(|error| {
-            let value = rule.integrate((s0, s1), |s| self.speed(s)).ok()?;
-            // Each speed within `rounding` (per unit of parameter), the
-            // weighted sum within SUM_ROUNDING of the value.
-            let slack = error + self.rounding * (s1 - s0) + SUM_ROUNDING * value.abs();
-            Some(((value - slack).max(0.0), value + slack))
-        });
-        let width = |b: Option<(f64, f64)>| b.map_or(f64::INFINITY, |(lo, hi)| hi - lo);
-        // Halvings about halve the spreads: hopeless pieces (a cusp, a
-        // turn much sharper than the piece) are not split in vain.
-        let hopeless = remainder.is_err_and(|too_wide| too_wide > f64::from(1u32 << depth));
-        if depth == 0 || hopeless || width(here) <= 2.0 * target {
-            return here;
-        }
-        let mid = 0.5 * (s0 + s1);
-        let halves = self
-            .certified((s0, mid), rule, 0.5 * target, depth - 1)
-            .zip(self.certified((mid, s1), rule, 0.5 * target, depth - 1))
-            .map(|((a, b), (c, d))| (a + c, b + d));
-        if width(halves) < width(here) {
-            halves
-        } else {
-            here
-        }
-    }
 }
 
 impl<const D: usize> Source<D> for SpanSource<D> {
@@ -298,8 +268,31 @@ impl<const D: usize> Source<D> for SpanSource<D> {
         ))
     }
 
-    fn bracket(&self, piece: (f64, f64), rule: &Rule, target: f64) -> Option<(f64, f64)> {
-        self.certified(piece, rule, target, BRACKET_HALVINGS)
+    const CERTIFIES: bool = true;
+
+    /// Each vertex (an evaluation, or two subdivisions) is within the
+    /// speed's rounding bound of its exact place.
+    fn vertex_rounding(&self) -> f64 {
+        2.0 * self.rounding
+    }
+
+    /// Each part's value within its certified Gauss–Legendre remainder
+    /// ([`gauss_remainder`]), the speeds' rounding (`rounding` per unit of
+    /// parameter) and the weighted sum's (`SUM_ROUNDING` of the value).
+    fn bracket(&self, parts: &[((f64, f64), f64)]) -> Option<Certified> {
+        let mut bracket = Certified {
+            lower: 0.0,
+            upper: 0.0,
+            quadrature: 0.0,
+        };
+        for &((s0, s1), value) in parts {
+            let error = gauss_remainder(&self.coeffs, (s0, s1), ORDER)?;
+            let slack = error + self.rounding * (s1 - s0) + SUM_ROUNDING * value.abs();
+            bracket.lower += (value - slack).max(0.0);
+            bracket.upper += value + slack;
+            bracket.quadrature += error;
+        }
+        Some(bracket)
     }
 
     /// The control polygon of the piece `[s₀, s₁]`, from two de Casteljau
@@ -426,16 +419,29 @@ impl<S> Adaptive<'_, S> {
         let mid = 0.5 * (s0 + s1);
         let chord = (p1 - p0).norm();
         let polygon = self.source.polygon(s0, s1);
+        let allowed = (self.allowed)(s1 - s0, polygon);
         // The piece's bracket: chord and polygon, tightened where the
-        // quadrature's error is certified.
-        let target = (self.allowed)(s1 - s0, polygon);
-        let bracket = || match self.source.bracket((s0, s1), self.rule, target) {
-            Some((lo, hi)) if lo.max(chord) <= hi.min(polygon) => (lo.max(chord), hi.min(polygon)),
-            _ => (chord, polygon),
+        // quadrature's error is certified; tight when within the piece's
+        // share of the tolerance (or when nothing can be certified).
+        let bracket = |parts: &[((f64, f64), f64)]| {
+            let certified = self.source.bracket(parts);
+            let tight = !S::CERTIFIES
+                || polygon - chord <= 2.0 * allowed
+                || certified.is_some_and(|c| c.quadrature <= allowed);
+            // Chord and polygon widened by their vertices' rounding.
+            let margin = self.source.vertex_rounding();
+            let (chord, polygon) = ((chord - margin).max(0.0), polygon + margin);
+            let (lo, hi) = match certified {
+                Some(c) if c.lower.max(chord) <= c.upper.min(polygon) => {
+                    (c.lower.max(chord), c.upper.min(polygon))
+                }
+                _ => (chord, polygon),
+            };
+            (lo, hi, tight)
         };
         if mid <= s0 || mid >= s1 {
             // Too narrow to halve: accept the piece as it is.
-            let (lo, hi) = bracket();
+            let (lo, hi, _) = bracket(&[((s0, s1), whole)]);
             tally.accept(whole, 0.0, lo, hi);
             return Ok(());
         }
@@ -444,11 +450,14 @@ impl<S> Adaptive<'_, S> {
         let difference = (halves - whole).abs();
         let slack = 1e-12 * polygon.min(halves.abs() + chord) + f64::MIN_POSITIVE;
         let bracketed = halves >= chord - slack && halves <= polygon + slack;
-        let converged = difference <= (self.allowed)(s1 - s0, polygon) && bracketed;
-        if converged || depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES {
-            let (lo, hi) = bracket();
-            tally.accept(halves, difference, lo, hi);
-            return Ok(());
+        let converged = difference <= allowed && bracketed;
+        let exhausted = depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES;
+        if converged || exhausted {
+            let (lo, hi, tight) = bracket(&[((s0, mid), left), ((mid, s1), right)]);
+            if tight || exhausted {
+                tally.accept(halves, difference, lo, hi);
+                return Ok(());
+            }
         }
         let pm = self.source.point(mid)?;
         self.run((s0, mid), (p0, pm), left, depth + 1, tally)?;
@@ -564,26 +573,17 @@ fn spans_length_at_scale<const D: usize>(
         0.5 * tolerance * (0.5 * polygon / total + 0.5 * width / count).min(1.0)
     };
     let mut tally = Tally::default();
-    let mut margin = 0.0;
-    for (source, span) in sources.iter().zip(spans) {
+    for source in &sources {
         let adaptive = Adaptive {
             source,
             rule,
             allowed: &allowed,
         };
         let ends = (source.point(0.0)?, source.point(1.0)?);
-        let before = tally.pieces;
         adaptive.start((0.0, 1.0), ends, &mut tally)?;
-        // Each piece's chord and polygon vertices: the evaluation's or two
-        // subdivisions' rounding, below twice the speed's bound.
-        margin += 2.0 * SpanSource::rounding(span) * (1 + tally.pieces - before) as f64;
     }
     let evaluation = rounding + SUM_ROUNDING * tally.length();
-    Ok(finish(
-        tally,
-        evaluation,
-        margin + SUM_ROUNDING * tally.upper,
-    ))
+    Ok(finish(tally, evaluation, SUM_ROUNDING * tally.upper))
 }
 
 /// The estimate, the bracket widened by `margin`, and the error bound

@@ -1,147 +1,192 @@
 //! A certified bound on the error of Gauss–Legendre quadrature of the speed
-//! of a rational Bézier piece: what makes the arc length's bracket as tight
-//! as its estimate.
+//! of a piece of a rational Bézier span: what makes the arc length's bracket
+//! as tight as its estimate.
 //!
-//! On its own parameter `u ∈ [0, 1]` the piece is `C = A/w` (homogeneous
-//! Bernstein coefficients), with speed `|C′| = √h / w²`, where
-//! `h = |N|²` and `N = w·A′ − w′·A`; `h` and `w` are polynomials. For a
-//! complex `z`, `Σᵢ |Bᵢᵈ(z)| = (|z| + |1 − z|)ᵈ`, and on the Bernstein
-//! ellipse `E_ρ` of `[0, 1]` (foci 0 and 1) `|z| + |1 − z| ≤ S = (ρ + 1/ρ)/2`.
-//! So a polynomial `p` of Bernstein coefficients `pᵢ` stays within
-//! `Δp = maxᵢ|pᵢ − p₀|·Sᵈ` of `p₀ = p(½)` on `E_ρ`. Where `Δh < h₀` and
-//! `Δw < w₀`, `h` keeps off the negative axis and `w` off zero: the speed
-//! continues analytically into `E_ρ` with `|f| ≤ M = √(h₀ + Δh)/(w₀ − Δw)²`,
-//! and the `m`-point Gauss rule on `[0, 1]` errs by at most
-//! `(64/15)·M·ρ⁻²ᵐ/(ρ² − 1)·½` (Trefethen, *Approximation Theory and
-//! Approximation Practice*, Theorem 19.3, on `[−1, 1]` scaled by ½).
+//! The span is `C = A/w` (homogeneous Bernstein coefficients), with speed
+//! `|C′| = √h / w²`, where `h = N·N` and `N = w·A′ − w′·A`; `N` has degree
+//! `2n − 2` (the leading terms cancel), `n − 1` for a polynomial span (`w`
+//! constant). On the piece `[s₀, s₁]`, in `x ∈ [−1, 1]`, `h` and `w` are
+//! polynomials with Chebyshev coefficients `cₖ`, exact from their values at
+//! as many Chebyshev points as coefficients. On the Bernstein ellipse
+//! `E_ρ` of `[−1, 1]`, `|Tₖ| ≤ (ρᵏ + ρ⁻ᵏ)/2`, so `p` stays within
+//! `Δp = Σₖ₌₁ |cₖ|·(ρᵏ + ρ⁻ᵏ)/2` of `c₀`. Where `Δh < c₀(h)` and
+//! `Δw < c₀(w)`, `h` keeps to the right half-plane and `w` off zero: the
+//! speed continues analytically into `E_ρ` with
+//! `|f| ≤ M = √(c₀(h) + Δh)/(c₀(w) − Δw)²`, and the `m`-point Gauss rule on
+//! the piece's own `[0, 1]` errs by at most `(64/15)·M·ρ⁻²ᵐ/(ρ² − 1)·½`
+//! (Trefethen, *Approximation Theory and Approximation Practice*, Theorem
+//! 19.3, on `[−1, 1]` scaled by ½). The Chebyshev basis is the ellipse's
+//! own: a polynomial of high degree whose variation is mostly linear gets a
+//! bound near `|c₁|·ρ`, not the `Sᵈ` of the Bernstein basis.
 
 use super::homogeneous::Homogeneous;
-use crate::bernstein::binomial_row;
-use nalgebra::SVector;
+use crate::bernstein;
+use crate::scratch::with_scratch;
 
 /// The ellipse parameters tried, largest (smallest bound) first.
-const RHOS: [f64; 6] = [8.0, 5.0, 3.5, 2.5, 1.8, 1.4];
+const RHOS: [f64; 8] = [16.0, 10.0, 6.0, 4.0, 2.8, 2.0, 1.6, 1.3];
 
-/// Relative allowance for the rounding of the coefficients computed here
-/// (a few hundred ulps of products of the piece's own coefficients).
-const COEFFICIENT_ROUNDING: f64 = 1e-10;
-
-/// The product of two Bernstein polynomials, of degrees `a` and `b`:
-/// `(p·q)ₖ = Σᵢ₊ⱼ₌ₖ C(a,i)·C(b,j)/C(a+b,k) · pᵢ·qⱼ`.
-fn product<T: Copy + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>>(
-    p: &[f64],
-    q: &[T],
-    zero: T,
-) -> Vec<T> {
-    let (a, b) = (p.len() - 1, q.len() - 1);
-    let (row_a, row_b, row_ab) = (binomial_row(a), binomial_row(b), binomial_row(a + b));
-    (0..=a + b)
-        .map(|k| {
-            let mut sum = zero;
-            for i in k.saturating_sub(b)..=k.min(a) {
-                let c = row_a[i] * row_b[k - i] / row_ab[k];
-                sum = sum + q[k - i] * (p[i] * c);
-            }
-            sum
-        })
-        .collect()
+/// The `m` Chebyshev points `xⱼ = cos(π(j + ½)/m)` of `[−1, 1]`,
+/// decreasing (symmetric about 0).
+fn nodes(x: &mut [f64]) {
+    let m = x.len();
+    for j in 0..m.div_ceil(2) {
+        let node = (std::f64::consts::PI * (j as f64 + 0.5) / m as f64).cos();
+        x[j] = node;
+        x[m - 1 - j] = -node;
+    }
+    if m % 2 == 1 {
+        x[m / 2] = 0.0;
+    }
 }
 
-/// The value at ½ (de Casteljau) and the largest distance of a coefficient
-/// from it.
-fn centre_and_spread(c: &[f64]) -> (f64, f64) {
-    let mut work = c.to_vec();
-    let n = work.len() - 1;
-    for level in 1..=n {
-        for j in 0..=(n - level) {
-            work[j] = 0.5 * (work[j] + work[j + 1]);
+/// `h` and `w` at the points `x` of the piece `[s₀, s₁]` (in the piece's
+/// own parameter) of the span `coeffs`, into `h` and `w`, and bounds on
+/// each sample's rounding. The bounds are generous: de Casteljau errs by
+/// `(n + 1)ε` of the coefficients' magnitude, `A′` and `w′` are at most `2n`
+/// times them, and `N` sums two such products.
+fn sample<const D: usize>(
+    coeffs: &[Homogeneous<D>],
+    (s0, s1): (f64, f64),
+    x: &[f64],
+    h: &mut [f64],
+    w: &mut [f64],
+) -> (f64, f64) {
+    let n = (coeffs.len() - 1) as f64;
+    let big_w = coeffs.iter().fold(0.0_f64, |a, c| a.max(c.w.abs()));
+    let big_p = coeffs.iter().fold(0.0_f64, |a, c| a.max(c.wp.norm()));
+    let width = s1 - s0;
+    let n_rounding = 16.0 * n * (n + 2.0) * f64::EPSILON * big_w * big_p * width;
+    let mut h_rounding = 0.0_f64;
+    for ((&xj, hj), wj) in x.iter().zip(h.iter_mut()).zip(w.iter_mut()) {
+        let s = s0 + 0.5 * (1.0 + xj) * width;
+        let (value, slope) = bernstein::eval_with_derivative(coeffs, s)
+            .unwrap_or((Homogeneous::zero(), Homogeneous::zero()));
+        // N in the piece's parameter: the chain rule's factor `width`.
+        let big_n = (slope.wp * value.w - value.wp * slope.w) * width;
+        *hj = big_n.norm_squared();
+        *wj = value.w;
+        h_rounding = h_rounding
+            .max((2.0 * big_n.norm() + n_rounding) * n_rounding + 4.0 * f64::EPSILON * *hj);
+    }
+    (h_rounding, 4.0 * (n + 2.0) * f64::EPSILON * big_w)
+}
+
+/// Into `c`, the Chebyshev coefficients `c₀ … c_deg` (`deg < m`) of the
+/// polynomial whose values at the `m` Chebyshev points `x` are `values`:
+/// `c₁ …` as magnitudes widened by a bound on their rounding (the samples'
+/// `rounding`, the sums' and the recurrence's), `c₀` as a lower bound.
+fn chebyshev(x: &[f64], values: &[f64], c: &mut [f64], rounding: f64) {
+    let m = values.len();
+    let top = values.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let error = 2.0 * rounding + 4.0 * (m * m) as f64 * f64::EPSILON * top;
+    c.fill(0.0);
+    for (&xj, &v) in x.iter().zip(values) {
+        // T₀ … T_deg at xⱼ by the three-term recurrence.
+        let (mut previous, mut current) = (1.0, xj);
+        c[0] += v;
+        for ck in c.iter_mut().skip(1) {
+            *ck += v * current;
+            let next = 2.0 * xj * current - previous;
+            previous = current;
+            current = next;
         }
     }
-    let centre = work[0];
-    let spread = c.iter().fold(0.0_f64, |m, &x| m.max((x - centre).abs()));
-    (centre, spread)
+    let scale = 2.0 / m as f64;
+    c[0] = 0.5 * scale * c[0] - error;
+    for ck in c.iter_mut().skip(1) {
+        *ck = (scale * *ck).abs() + error;
+    }
+}
+
+/// `(c₀, Δ)` on `E_ρ`: the centre (a lower bound) and the radius of a disk
+/// holding the polynomial there (infinite where the powers overflow).
+fn disk(c: &[f64], rho: f64) -> (f64, f64) {
+    let mut radius = 0.0;
+    let mut power = 1.0;
+    for &ck in &c[1..] {
+        power *= rho;
+        radius += ck * 0.5 * (power + 1.0 / power);
+    }
+    (
+        c[0],
+        if radius.is_finite() {
+            radius
+        } else {
+            f64::INFINITY
+        },
+    )
 }
 
 /// A bound on the error of the `points`-point Gauss–Legendre rule for the
-/// length of `piece` (homogeneous coefficients on its own `[0, 1]`), in
-/// exact arithmetic; where no ellipse of [`RHOS`] certifies it, `Err` with
-/// how many times too wide the spreads are for the narrowest ellipse (a
-/// halving about halves them), infinite where nothing can be said.
+/// length of the piece `[s₀, s₁]` of the span `coeffs` (homogeneous
+/// coefficients, weights positive), rounding in the sampled values
+/// included; `None` where no ellipse of [`RHOS`] certifies it (a cusp, or a
+/// turn sharp for the piece's size: a halving about halves the distance
+/// from the speed's nearest complex singularity to the piece, in units of
+/// the piece).
 pub(super) fn gauss_remainder<const D: usize>(
-    piece: &[Homogeneous<D>],
+    coeffs: &[Homogeneous<D>],
+    piece: (f64, f64),
     points: usize,
-) -> Result<f64, f64> {
-    let Some(n) = piece.len().checked_sub(1) else {
-        return Err(f64::INFINITY);
-    };
+) -> Option<f64> {
+    let n = coeffs.len().checked_sub(1)?;
     if n == 0 {
-        return Ok(0.0);
+        return Some(0.0);
     }
-    let mut w: Vec<f64> = piece.iter().map(|h| h.w).collect();
-    let a: Vec<SVector<f64, D>> = piece.iter().map(|h| h.wp).collect();
-    let da: Vec<SVector<f64, D>> = a.windows(2).map(|x| (x[1] - x[0]) * n as f64).collect();
-    let zero = SVector::<f64, D>::zeros();
-    let big_n: Vec<SVector<f64, D>> = if w.iter().all(|&x| x == w[0]) {
-        // Equal weights: N = w·A′ of degree n − 1, and w a constant (the
-        // lowest degrees make the tightest bounds).
-        w.truncate(1);
-        da.iter().map(|v| v * w[0]).collect()
+    let polynomial = coeffs.iter().all(|c| c.w == coeffs[0].w);
+    let (h_degree, w_degree) = if polynomial {
+        (2 * n - 2, 0)
     } else {
-        // N = w·A′ − w′·A, degree 2n − 1.
-        let dw: Vec<f64> = w.windows(2).map(|x| (x[1] - x[0]) * n as f64).collect();
-        product(&w, &da, zero)
-            .iter()
-            .zip(product(&dw, &a, zero))
-            .map(|(x, y)| x - y)
-            .collect()
+        (4 * n - 4, n)
     };
-    // h = |N|², degree 4n − 2, one coordinate at a time.
-    let mut h = vec![0.0; 2 * big_n.len() - 1];
-    for d in 0..D {
-        let coordinate: Vec<f64> = big_n.iter().map(|v| v[d]).collect();
-        for (hk, x) in h.iter_mut().zip(product(&coordinate, &coordinate, 0.0)) {
-            *hk += x;
-        }
-    }
-    let (h0, h_spread) = centre_and_spread(&h);
-    let (w0, w_spread) = centre_and_spread(&w);
-    let h_max = h.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let w_max = w.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let h_spread = h_spread + COEFFICIENT_ROUNDING * h_max;
-    let w_spread = w_spread + COEFFICIENT_ROUNDING * w_max;
-    if !(h0 > 0.0 && w0 > 0.0 && h0.is_finite() && w0.is_finite()) {
-        return Err(f64::INFINITY);
-    }
-    let mut too_wide = f64::INFINITY;
-    for &rho in &RHOS {
-        let s = 0.5 * (rho + 1.0 / rho);
-        let dh = h_spread * s.powi(h.len() as i32 - 1);
-        let dw = w_spread * s.powi(w.len() as i32 - 1);
-        if dh < h0 && dw < w0 {
-            let m = (h0 + dh).sqrt() / ((w0 - dw) * (w0 - dw));
-            let error = 64.0 / 15.0 * m * rho.powi(-2 * points as i32) / (rho * rho - 1.0) * 0.5;
-            if error.is_finite() {
-                return Ok(error);
+    let m = h_degree.max(w_degree) + 1;
+    with_scratch(5 * m, 0.0, |buf| {
+        let (x, rest) = buf.split_at_mut(m);
+        let (h_values, rest) = rest.split_at_mut(m);
+        let (w_values, rest) = rest.split_at_mut(m);
+        let (h, w) = rest.split_at_mut(m);
+        let (h, w) = (&mut h[..=h_degree], &mut w[..=w_degree]);
+        nodes(x);
+        let (h_rounding, w_rounding) = sample(coeffs, piece, x, h_values, w_values);
+        chebyshev(x, h_values, h, h_rounding);
+        chebyshev(x, w_values, w, w_rounding);
+        // The largest ellipse that certifies: the bound falls like ρ⁻²ᵐ,
+        // far faster than `M` grows.
+        RHOS.iter().find_map(|&rho| {
+            let (h0, dh) = disk(h, rho);
+            let (w0, dw) = disk(w, rho);
+            if !(dh < h0 && dw < w0) {
+                return None;
             }
-        }
-        too_wide = (dh / h0).max(dw / w0);
-    }
-    Err(too_wide)
+            let bound = (h0 + dh).sqrt() / ((w0 - dw) * (w0 - dw));
+            let error =
+                64.0 / 15.0 * bound * rho.powi(-2 * points as i32) / (rho * rho - 1.0) * 0.5;
+            error.is_finite().then_some(error)
+        })
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Point2;
+
+    fn span(points: &[(f64, f64)], weights: &[f64]) -> Vec<Homogeneous<2>> {
+        points
+            .iter()
+            .zip(weights)
+            .map(|(&(x, y), &w)| Homogeneous::new(&Point2::new(x, y), w))
+            .collect()
+    }
 
     /// A straight segment at constant speed: every ellipse certifies, and
     /// the bound is that of the largest (up to the rounding allowance).
     #[test]
     fn a_segment_is_certified_with_the_largest_ellipse() {
-        let piece: Vec<Homogeneous<2>> = (0..4)
-            .map(|i| Homogeneous::new(&nalgebra::Point2::new(i as f64, 0.0), 1.0))
-            .collect();
-        let e = gauss_remainder(&piece, 16).unwrap();
-        let rho: f64 = 8.0;
+        let coeffs = span(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0)], &[1.0; 4]);
+        let e = gauss_remainder(&coeffs, (0.0, 1.0), 16).unwrap();
+        let rho: f64 = RHOS[0];
         let expected = 64.0 / 15.0 * 3.0 * rho.powi(-32) / (rho * rho - 1.0) * 0.5;
         assert!(
             expected <= e && e <= expected * (1.0 + 1e-3),
@@ -150,14 +195,71 @@ mod tests {
     }
 
     /// A cusp (speed zero inside) is never certified: the speed is not
-    /// analytic there.
+    /// analytic there, on the span or on the piece around it.
     #[test]
     fn a_cusp_is_not_certified() {
-        let points = [(0.0, 0.0), (1.0, 1.0), (0.0, 1.0), (1.0, 0.0)];
-        let piece: Vec<Homogeneous<2>> = points
-            .iter()
-            .map(|&(x, y)| Homogeneous::new(&nalgebra::Point2::new(x, y), 1.0))
-            .collect();
-        assert!(gauss_remainder(&piece, 16).is_err());
+        let coeffs = span(&[(0.0, 0.0), (1.0, 1.0), (0.0, 1.0), (1.0, 0.0)], &[1.0; 4]);
+        assert!(gauss_remainder(&coeffs, (0.0, 1.0), 16).is_none());
+        assert!(gauss_remainder(&coeffs, (0.49, 0.51), 16).is_none());
+    }
+
+    /// The sampled Chebyshev coefficients reproduce `h` and `w` away from
+    /// the sample points (so the degrees `2n − 2` of `N` and `n` of `w` are
+    /// right): a rational cubic, compared at other parameters with `h`
+    /// computed directly.
+    #[test]
+    fn chebyshev_coefficients_reproduce_the_span() {
+        let coeffs = span(
+            &[(0.0, 0.0), (1.0, 2.0), (3.0, -1.0), (4.0, 1.0)],
+            &[1.0, 0.3, 2.0, 0.7],
+        );
+        let piece = (0.2, 0.7);
+        let mut x = [0.0; 9];
+        nodes(&mut x);
+        let (mut hs, mut ws) = ([0.0; 9], [0.0; 9]);
+        sample(&coeffs, piece, &x, &mut hs, &mut ws);
+        let (mut h, mut w) = ([0.0; 9], [0.0; 4]);
+        chebyshev(&x, &hs, &mut h, 0.0);
+        chebyshev(&x, &ws, &mut w, 0.0);
+        // The magnitudes against a sum with `cos` (signs kept), then the
+        // signed series against `h` and `w` computed directly.
+        let signed = |values: &[f64], deg: usize| -> Vec<f64> {
+            let m = values.len();
+            (0..=deg)
+                .map(|k| {
+                    let c: f64 = values
+                        .iter()
+                        .enumerate()
+                        .map(|(j, v)| {
+                            v * (k as f64 * std::f64::consts::PI * (j as f64 + 0.5) / m as f64)
+                                .cos()
+                        })
+                        .sum::<f64>()
+                        * 2.0
+                        / m as f64;
+                    if k == 0 { 0.5 * c } else { c }
+                })
+                .collect()
+        };
+        let (hc, wc) = (signed(&hs, 8), signed(&ws, 3));
+        for (bound, c) in h.iter().zip(&hc).skip(1) {
+            assert!((bound - c.abs()).abs() <= 1e-12 * bound.max(1.0));
+        }
+        assert!((h[0] - hc[0]).abs() <= 1e-12 * h[0]);
+        assert!((w[0] - wc[0]).abs() <= 1e-12);
+        for x in [-0.93, -0.4, 0.17, 0.66] {
+            let s = piece.0 + 0.5 * (1.0 + x) * (piece.1 - piece.0);
+            let (value, slope) = bernstein::eval_with_derivative(&coeffs, s).unwrap();
+            let big_n = (slope.wp * value.w - value.wp * slope.w) * (piece.1 - piece.0);
+            let series = |c: &[f64]| -> f64 {
+                c.iter()
+                    .enumerate()
+                    .map(|(k, ck)| ck * (k as f64 * x.acos()).cos())
+                    .sum()
+            };
+            let direct = big_n.norm_squared();
+            assert!((series(&hc) - direct).abs() <= 1e-12 * direct, "x = {x}");
+            assert!((series(&wc) - value.w).abs() <= 1e-12, "x = {x}");
+        }
     }
 }
