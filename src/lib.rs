@@ -119,6 +119,7 @@ mod scratch;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod surface;
+mod surface_nearest;
 pub mod tensor;
 #[cfg(test)]
 mod test_unit;
@@ -138,6 +139,7 @@ pub use ray::newton::{NewtonFinish, NewtonIntersector, NewtonReport, NewtonRun};
 pub use ray::{Hit, Intersect, Ray, Tolerance};
 pub use revolution::{ExactReport, Revolution};
 pub use surface::{PatchBounds, Surface};
+pub use surface_nearest::SurfaceNearest;
 pub use tensor::{
     BSplineSurface, BezierPatch, BezierPatches, BezierSurface, NurbsSurface, RationalBezierPatch,
 };

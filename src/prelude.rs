@@ -22,5 +22,5 @@ pub use crate::nalgebra::{Point2, Point3, Unit, Vector2, Vector3};
 pub use crate::{
     Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSurface, Curve, Error, Hit,
     Intersect, Mesh, NewtonIntersector, Nurbs, NurbsSurface, PatchBounds, RationalBezier, Ray,
-    Revolution, Surface, Tolerance,
+    Revolution, Surface, SurfaceNearest, Tolerance,
 };

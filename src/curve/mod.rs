@@ -44,6 +44,7 @@ pub use homogeneous::MAX_DERIVATIVE_ORDER;
 pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
+pub(crate) use query::check_query_point;
 pub use query::{CurveProjector, NearestPoint};
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 pub(crate) use rational_bezier::{normalized_weights, validate_weights};

@@ -524,7 +524,7 @@ pub(super) fn validate_spans<const D: usize>(spans: &[RationalBezierSpan<D>]) ->
 
 /// [`Error::InvalidQueryPoint`] for a coordinate that is not finite or
 /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE).
-fn check_query_point<const D: usize>(p: &Point<f64, D>) -> Result<(), Error> {
+pub(crate) fn check_query_point<const D: usize>(p: &Point<f64, D>) -> Result<(), Error> {
     match p
         .coords
         .iter()

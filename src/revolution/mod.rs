@@ -17,6 +17,7 @@ mod intersect;
 mod meridian_cells;
 mod meridian_newton;
 mod monotone_spans;
+mod nearest;
 mod one_root;
 mod profile_approximation;
 mod profile_refine;
