@@ -149,6 +149,11 @@ impl BezierSurface {
         self.table.point_and_normal(u, v)
     }
 
+    /// The patch table (for the nearest-point search).
+    pub(crate) fn table(&self) -> &PatchTable {
+        &self.table
+    }
+
     /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
     /// (clamped into the domain), analytic.
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {

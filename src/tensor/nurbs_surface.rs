@@ -131,6 +131,11 @@ impl NurbsSurface {
         &self.core.weights
     }
 
+    /// The shared core (for the nearest-point search).
+    pub(crate) fn core(&self) -> &TensorSpline {
+        &self.core
+    }
+
     /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
     /// (clamped into the domain), by the quotient rule.
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {

@@ -1,0 +1,304 @@
+//! A certified lower bound of the squared distance from a point to a piece
+//! of a (rational) Bézier patch, from the Bernstein form of that distance.
+//!
+//! With the query point `P` at the origin (the net translated: `Yᵢⱼ =
+//! wᵢⱼ(Pᵢⱼ − P)`, weights `wᵢⱼ > 0`), the piece is `S − P = Y/w` with `Y`
+//! and `w` tensor Bernstein polynomials of degrees `(p, q)` on `[0, 1]²`,
+//! and `|S − P|² = F/W` with `F = Y·Y` and `W = w²`, both of degrees
+//! `(2p, 2q)`. Their Bernstein coefficients are exact sums of products
+//! (Farin, *Curves and Surfaces for CAGD*, the product of Bernstein
+//! polynomials):
+//!
+//! ```text
+//! F_kl = Σ_{i+i′=k, j+j′=l} C(p,i)C(p,i′)C(q,j)C(q,j′)/(C(2p,k)C(2q,l)) · Yᵢⱼ·Yᵢ′ⱼ′,
+//! ```
+//!
+//! and `W` likewise (`W ≡ 1` for a polynomial patch). Then `|S − P|² ≥ L`
+//! on the piece exactly when `Φ = F − L·W ≥ 0` there (`W > 0`), and `Φ` is
+//! bounded below two ways, the larger kept:
+//!
+//! - by its least Bernstein coefficient (the convex hull property);
+//! - to second order about a point `c` of the piece: `Φ(c + d) ≥ Φ(c) +
+//!   ∇Φ(c)·d + ½·dᵀHd` for a matrix `H` below every Hessian of `Φ` on the
+//!   piece, whose entries are bounded by the Bernstein coefficients of
+//!   `Φ`'s second derivatives (`2p(2p − 1)·Δ²`, `2p·2q·ΔΔ`); with
+//!   `H_ss ≥ a`, `H_tt ≥ c` and `|H_st| ≤ b`, `dᵀHd ≥ (a − b)d_s² + (c −
+//!   b)d_t²`, and, when `a, c > 0` and `ρ = b/√(ac) < 1`, `dᵀHd ≥ (1 −
+//!   ρ)(a·d_s² + c·d_t²)`; both are separable, so their least value over
+//!   the piece is the sum of two one-dimensional quadratic minima.
+//!
+//! The second bound is what ends the search near a minimum: about the
+//! piece's own nearest point (found by Newton's method), where `∇Φ` is
+//! nearly zero or points out of the piece and `H` is positive definite,
+//! it is `Φ(c)` less rounding, so the piece is settled whole instead of cut
+//! ever finer. It is exact for exact identities too (a sphere's centre:
+//! `F = R²W`, every coefficient of `Φ` is `(R² − L)·W_kl`).
+//!
+//! # Rounding
+//! Every bound is lowered by a bound on the rounding: the coefficients of
+//! `Φ` as computed differ from those of the exact piece by at most `η`
+//! (from the net's own error bound `e_Y`, `e_w` per coordinate and the
+//! products' and sums' rounding `γ = ((p+1)(q+1) + 12)·u`, `u = ε/2`):
+//! `η = 3(2·Y·e_Y + e_Y²) + 3γY² + L(2·w·e_w + e_w² + γw²) + 2u(L·W + F)`
+//! with `Y`, `w`, `F`, `W` the largest magnitudes, so the polynomials
+//! differ by at most `η` on the whole piece (the Bernstein basis sums to
+//! one); evaluating the bound from the computed coefficients adds at most
+//! `16u·M·(2p + 2q + 2)²` (`M` the largest coefficient magnitude): de
+//! Casteljau's value and gradient, the differences and the final sums.
+
+use super::patch::tensor_jet;
+use crate::bernstein::binomial_row;
+use crate::curve::Homogeneous;
+
+/// The largest degree in each direction the form is built for: beyond it
+/// the binomials of degree `2p` are no longer exact in `f64` (and the form
+/// costs `O(p²q²)`), and pieces are bounded by their boxes alone.
+pub(super) const MAX_FORM_DEGREE: usize = 24;
+
+/// The unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// Below this, an absolute allowance for underflow (the search's nets are
+/// scaled so their largest coordinate is about 1).
+const UNDERFLOW: f64 = 1e-290;
+
+/// The Bernstein form of the squared distance of pieces of one degree pair,
+/// with its work space.
+#[derive(Debug, Clone)]
+pub(super) struct DistanceForm {
+    /// `(p, q)`.
+    pub(super) degrees: (usize, usize),
+    /// `C(p,i)·C(q,j)`, row-major `(p + 1) × (q + 1)`.
+    scales: Vec<f64>,
+    /// `1/(C(2p,k)·C(2q,l))`, row-major `(2p + 1) × (2q + 1)`.
+    inverses: Vec<f64>,
+    /// The coefficients of `F`.
+    f: Vec<f64>,
+    /// The coefficients of `W` (unused for a polynomial piece).
+    w: Vec<f64>,
+    /// The coefficients of `Φ = F − L·W`.
+    phi: Vec<f64>,
+    /// Whether `W` is formed (a rational piece).
+    rational: bool,
+    /// `3(2·Y·e_Y + e_Y²) + 3γY²`: `F`'s coefficient error bound.
+    f_error: f64,
+    /// `2·w·e_w + e_w² + γw²`: `W`'s coefficient error bound.
+    w_error: f64,
+    /// The largest coefficients of `F` and `W`.
+    f_max: f64,
+    w_max: f64,
+}
+
+impl DistanceForm {
+    /// The form for degrees `(p, q)`, each at most [`MAX_FORM_DEGREE`].
+    pub(super) fn new((p, q): (usize, usize)) -> Self {
+        let (bp, bq) = (binomial_row(p), binomial_row(q));
+        let (b2p, b2q) = (binomial_row(2 * p), binomial_row(2 * q));
+        let scales = bp
+            .iter()
+            .flat_map(|a| bq.iter().map(move |b| a * b))
+            .collect();
+        let inverses = b2p
+            .iter()
+            .flat_map(|a| b2q.iter().map(move |b| 1.0 / (a * b)))
+            .collect();
+        let len = (2 * p + 1) * (2 * q + 1);
+        DistanceForm {
+            degrees: (p, q),
+            scales,
+            inverses,
+            f: vec![0.0; len],
+            w: vec![0.0; len],
+            phi: vec![0.0; len],
+            rational: false,
+            f_error: 0.0,
+            w_error: 0.0,
+            f_max: 0.0,
+            w_max: 0.0,
+        }
+    }
+
+    /// Forms `F` (and `W` when `rational`) of the translated net `net`
+    /// (`(Yᵢⱼ, wᵢⱼ)`, row-major), whose entries are within `e_y` (each
+    /// coordinate of `Y`) and `e_w` (each weight) of the exact piece's.
+    pub(super) fn load(&mut self, net: &[Homogeneous<3>], rational: bool, (e_y, e_w): (f64, f64)) {
+        let (p, q) = self.degrees;
+        let (cols, out_cols) = (q + 1, 2 * q + 1);
+        self.rational = rational;
+        self.f.iter_mut().for_each(|x| *x = 0.0);
+        if rational {
+            self.w.iter_mut().for_each(|x| *x = 0.0);
+        }
+        let (mut y_max, mut w_max) = (0.0_f64, 0.0_f64);
+        for (a, (ha, &sa)) in net.iter().zip(&self.scales).enumerate() {
+            y_max = y_max.max(ha.wp.amax());
+            w_max = w_max.max(ha.w);
+            let (ia, ja) = (a / cols, a % cols);
+            let (ya, wa) = (ha.wp * sa, ha.w * sa);
+            let diagonal = 2 * ia * out_cols + 2 * ja;
+            self.f[diagonal] += ya.dot(&ya);
+            if rational {
+                self.w[diagonal] += wa * wa;
+            }
+            for (b, (hb, &sb)) in net.iter().zip(&self.scales).enumerate().skip(a + 1) {
+                let at = (ia + b / cols) * out_cols + ja + b % cols;
+                // Doubled exactly: the pair (a, b) and the pair (b, a).
+                self.f[at] += 2.0 * ya.dot(&(hb.wp * sb));
+                if rational {
+                    self.w[at] += 2.0 * wa * (hb.w * sb);
+                }
+            }
+        }
+        for (x, inv) in self.f.iter_mut().zip(&self.inverses) {
+            *x *= inv;
+        }
+        if rational {
+            for (x, inv) in self.w.iter_mut().zip(&self.inverses) {
+                *x *= inv;
+            }
+        }
+        let gamma = ((p + 1) as f64 * (q + 1) as f64 + 12.0) * U * 1.01;
+        let y = y_max + e_y;
+        self.f_error = 3.0 * (2.0 * y * e_y + e_y * e_y) + 3.0 * gamma * y * y;
+        self.f_max = self.f.iter().fold(0.0, |m, &x| m.max(x.abs()));
+        if rational {
+            let w = w_max + e_w;
+            self.w_error = 2.0 * w * e_w + e_w * e_w + gamma * w * w;
+            self.w_max = self.w.iter().fold(0.0, |m, &x| m.max(x.abs()));
+        } else {
+            self.w_error = 0.0;
+            self.w_max = 1.0;
+        }
+    }
+
+    /// A lower bound, rounding included, of `F − level·W` on the whole
+    /// piece (`level ≥ 0`), using the second-order bound about `c ∈ [0, 1]²`
+    /// (see the module docs): positive means `|S − P|² > level` on the
+    /// whole piece.
+    pub(super) fn lower_bound(&mut self, level: f64, c: (f64, f64)) -> f64 {
+        let (p, q) = self.degrees;
+        let (big_p, big_q) = (2 * p, 2 * q);
+        let cols = big_q + 1;
+        if self.rational {
+            for ((phi, f), w) in self.phi.iter_mut().zip(&self.f).zip(&self.w) {
+                *phi = f - level * w;
+            }
+        } else {
+            for (phi, f) in self.phi.iter_mut().zip(&self.f) {
+                *phi = f - level;
+            }
+        }
+        let eta = self.f_error
+            + level * self.w_error
+            + 2.0 * U * (level * self.w_max + self.f_max)
+            + UNDERFLOW;
+        let phi = &self.phi;
+        let (least, magnitude) = phi.iter().fold((f64::INFINITY, 0.0_f64), |(l, m), &x| {
+            (l.min(x), m.max(x.abs()))
+        });
+        if least - eta > 0.0 {
+            return least - eta;
+        }
+        let at = |k: usize, l: usize| phi[k * cols + l];
+        // Lower bounds of Φ_ss and Φ_tt, and the largest |Φ_st|.
+        let mut a = 0.0_f64;
+        if big_p >= 2 {
+            a = f64::INFINITY;
+            for k in 0..=big_p - 2 {
+                for l in 0..=big_q {
+                    a = a.min(at(k + 2, l) - 2.0 * at(k + 1, l) + at(k, l));
+                }
+            }
+            a *= (big_p * (big_p - 1)) as f64;
+        }
+        let mut c_tt = 0.0_f64;
+        if big_q >= 2 {
+            c_tt = f64::INFINITY;
+            for k in 0..=big_p {
+                for l in 0..=big_q - 2 {
+                    c_tt = c_tt.min(at(k, l + 2) - 2.0 * at(k, l + 1) + at(k, l));
+                }
+            }
+            c_tt *= (big_q * (big_q - 1)) as f64;
+        }
+        let mut b = 0.0_f64;
+        if big_p >= 1 && big_q >= 1 {
+            for k in 0..big_p {
+                for l in 0..big_q {
+                    let mixed = at(k + 1, l + 1) - at(k + 1, l) - at(k, l + 1) + at(k, l);
+                    b = b.max(mixed.abs());
+                }
+            }
+            b *= (big_p * big_q) as f64;
+        }
+        let jet = tensor_jet(phi, cols, c.0, c.1, 1);
+        let (value, gs, gt) = (jet[0][0], jet[1][0], jet[0][1]);
+        let box_s = (-c.0, 1.0 - c.0);
+        let box_t = (-c.1, 1.0 - c.1);
+        let mut taylor =
+            value + quadratic_min(gs, a - b, box_s) + quadratic_min(gt, c_tt - b, box_t);
+        if a > 0.0 && c_tt > 0.0 && b < (a * c_tt).sqrt() {
+            let keep = 1.0 - b / (a * c_tt).sqrt();
+            let convex =
+                value + quadratic_min(gs, keep * a, box_s) + quadratic_min(gt, keep * c_tt, box_t);
+            taylor = taylor.max(convex);
+        }
+        let sides = (big_p + big_q + 2) as f64;
+        let eval = 16.0 * U * magnitude * sides * sides;
+        least.max(taylor) - eta - eval
+    }
+}
+
+/// The least value of `g·d + ½μ·d²` for `d` in `[lo, hi]`.
+fn quadratic_min(g: f64, mu: f64, (lo, hi): (f64, f64)) -> f64 {
+    let q = |d: f64| g * d + 0.5 * mu * d * d;
+    if mu > 0.0 {
+        q((-g / mu).clamp(lo, hi))
+    } else {
+        q(lo).min(q(hi))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Point3, Vector3};
+
+    /// The formed `F` and `W` agree with `|Y|²` and `w²` evaluated from the
+    /// net, and the bound is below the sampled least value of `F − L·W`.
+    #[test]
+    fn form_matches_the_net_and_bounds_it() {
+        let net: Vec<Homogeneous<3>> = (0..12)
+            .map(|k| {
+                let (i, j) = ((k / 4) as f64, (k % 4) as f64);
+                let w = 1.0 + 0.3 * ((k * 7) % 5) as f64;
+                Homogeneous::new(&Point3::new(i - 1.0, j * 0.7 - 1.0, (i * j).sin()), w)
+            })
+            .collect();
+        let mut form = DistanceForm::new((2, 3));
+        form.load(&net, true, (0.0, 0.0));
+        let level = 0.05;
+        let bound = form.lower_bound(level, (0.4, 0.6));
+        let mut least = f64::INFINITY;
+        for a in 0..=40 {
+            for b in 0..=40 {
+                let (s, t) = (a as f64 / 40.0, b as f64 / 40.0);
+                let h = tensor_jet(&net, 4, s, t, 0)[0][0];
+                let f = tensor_jet(&form.f, 7, s, t, 0)[0][0];
+                let w = tensor_jet(&form.w, 7, s, t, 0)[0][0];
+                assert!((f - h.wp.norm_squared()).abs() < 1e-12 * (1.0 + f));
+                assert!((w - h.w * h.w).abs() < 1e-12 * (1.0 + w));
+                least = least.min(f - level * w);
+            }
+        }
+        assert!(bound <= least, "{bound} > {least}");
+        let _ = Vector3::<f64>::zeros();
+    }
+
+    #[test]
+    fn quadratic_min_cases() {
+        assert_eq!(quadratic_min(1.0, 2.0, (-1.0, 1.0)), -0.25);
+        assert_eq!(quadratic_min(1.0, 2.0, (0.0, 1.0)), 0.0);
+        assert_eq!(quadratic_min(1.0, -2.0, (-1.0, 1.0)), -2.0);
+    }
+}
