@@ -35,20 +35,28 @@
 //! `F = R²W`, every coefficient of `Φ` is `(R² − L)·W_kl`).
 //!
 //! # Rounding
-//! Every bound is lowered by a bound on the rounding: the coefficients of
-//! `Φ` as computed differ from those of the exact piece by at most `η`
-//! (from the net's own error bound `e_Y`, `e_w` per coordinate and the
-//! products' and sums' rounding `γ = ((p+1)(q+1) + 12)·u`, `u = ε/2`):
-//! `η = 3(2·Y·e_Y + e_Y²) + 3γY² + L(2·w·e_w + e_w² + γw²) + 2u(L·W + F)`
-//! with `Y`, `w`, `F`, `W` the largest magnitudes, so the polynomials
-//! differ by at most `η` on the whole piece (the Bernstein basis sums to
-//! one); evaluating the bound from the computed coefficients adds at most
+//! The net's coordinates carry rounding (the translation and the
+//! subdivision): the computed `Ỹ`, `w̃` are within `e_Y` (per coordinate)
+//! and `e_w` of the exact piece's everywhere (the Bernstein basis sums to
+//! one). So `|Y| ≥ |Ỹ| − √3·e_Y` and `ℓ·w ≤ ℓ·w̃ + ℓ·e_w`, and
+//! `|S − P| ≥ ℓ` on the exact piece once `|Ỹ| ≥ ℓ′·w̃` with
+//! `ℓ′ = ℓ + (ℓ·e_w + √3·e_Y)/(w_min − e_w)`: the computed net is bounded
+//! as if exact, against the raised level `L = ℓ′²`. (Moving the net's
+//! error into the level, rather than into `F`'s coefficients, keeps it
+//! proportional to the distance: near the surface a piece is settled
+//! without being cut down to the size of the distance.) The coefficients
+//! of `Φ = F(Ỹ) − L·W(w̃)` as computed are within
+//! `η = 3γY² + L·γw² + 2u(L·W + F)` of the exact ones (`γ =
+//! ((p+1)(q+1) + 12)·u`, `u = ε/2`, `Y`, `w`, `F`, `W` the largest
+//! magnitudes), and evaluating the bound from them adds at most
 //! `16u·M·(2p + 2q + 2)²` (`M` the largest coefficient magnitude): de
 //! Casteljau's value and gradient, the differences and the final sums.
 
 use super::patch::tensor_jet;
 use crate::bernstein::binomial_row;
 use crate::curve::Homogeneous;
+use crate::scratch::with_scratch;
+use nalgebra::Vector3;
 
 /// The largest degree in each direction the form is built for: beyond it
 /// the binomials of degree `2p` are no longer exact in `f64` (and the form
@@ -72,6 +80,9 @@ pub(super) struct DistanceForm {
     scales: Vec<f64>,
     /// `1/(C(2p,k)·C(2q,l))`, row-major `(2p + 1) × (2q + 1)`.
     inverses: Vec<f64>,
+    /// `i·(2q + 1) + j` for the net's entry `(i, j)`: the index of the
+    /// product of entries `a` and `b` in the form is the sum of theirs.
+    places: Vec<usize>,
     /// The coefficients of `F`.
     f: Vec<f64>,
     /// The coefficients of `W` (unused for a polynomial piece).
@@ -80,13 +91,20 @@ pub(super) struct DistanceForm {
     phi: Vec<f64>,
     /// Whether `W` is formed (a rational piece).
     rational: bool,
-    /// `3(2·Y·e_Y + e_Y²) + 3γY²`: `F`'s coefficient error bound.
+    /// The net's error bounds `(e_Y, e_w)` and least weight.
+    net_errors: (f64, f64),
+    w_min: f64,
+    /// `3γY²`: the rounding of `F`'s coefficients.
     f_error: f64,
-    /// `2·w·e_w + e_w² + γw²`: `W`'s coefficient error bound.
+    /// `γw²`: the rounding of `W`'s coefficients.
     w_error: f64,
     /// The largest coefficients of `F` and `W`.
     f_max: f64,
     w_max: f64,
+    /// `Φ`'s rounding bound, least coefficient and largest magnitude.
+    eta: f64,
+    least: f64,
+    magnitude: f64,
 }
 
 impl DistanceForm {
@@ -103,52 +121,73 @@ impl DistanceForm {
             .flat_map(|a| b2q.iter().map(move |b| 1.0 / (a * b)))
             .collect();
         let len = (2 * p + 1) * (2 * q + 1);
+        let places = (0..=p)
+            .flat_map(|i| (0..=q).map(move |j| i * (2 * q + 1) + j))
+            .collect();
         DistanceForm {
             degrees: (p, q),
             scales,
             inverses,
+            places,
             f: vec![0.0; len],
             w: vec![0.0; len],
             phi: vec![0.0; len],
             rational: false,
+            net_errors: (0.0, 0.0),
+            w_min: 1.0,
             f_error: 0.0,
             w_error: 0.0,
             f_max: 0.0,
             w_max: 0.0,
+            eta: f64::INFINITY,
+            least: f64::NEG_INFINITY,
+            magnitude: 0.0,
         }
     }
 
     /// Forms `F` (and `W` when `rational`) of the translated net `net`
     /// (`(Yᵢⱼ, wᵢⱼ)`, row-major), whose entries are within `e_y` (each
-    /// coordinate of `Y`) and `e_w` (each weight) of the exact piece's.
-    pub(super) fn load(&mut self, net: &[Homogeneous<3>], rational: bool, (e_y, e_w): (f64, f64)) {
+    /// coordinate of `Y`) and `e_w` (each weight) of the exact piece's, and
+    /// whose exact weights are at least `w_min`.
+    pub(super) fn load(
+        &mut self,
+        net: &[Homogeneous<3>],
+        rational: bool,
+        (e_y, e_w): (f64, f64),
+        w_min: f64,
+    ) {
         let (p, q) = self.degrees;
-        let (cols, out_cols) = (q + 1, 2 * q + 1);
         self.rational = rational;
+        self.net_errors = (e_y, e_w);
+        self.w_min = w_min;
         self.f.iter_mut().for_each(|x| *x = 0.0);
         if rational {
             self.w.iter_mut().for_each(|x| *x = 0.0);
         }
         let (mut y_max, mut w_max) = (0.0_f64, 0.0_f64);
-        for (a, (ha, &sa)) in net.iter().zip(&self.scales).enumerate() {
-            y_max = y_max.max(ha.wp.amax());
-            w_max = w_max.max(ha.w);
-            let (ia, ja) = (a / cols, a % cols);
-            let (ya, wa) = (ha.wp * sa, ha.w * sa);
-            let diagonal = 2 * ia * out_cols + 2 * ja;
-            self.f[diagonal] += ya.dot(&ya);
-            if rational {
-                self.w[diagonal] += wa * wa;
+        let n = net.len();
+        with_scratch(n, (Vector3::zeros(), 0.0), |scaled| {
+            for ((x, h), &c) in scaled.iter_mut().zip(net).zip(&self.scales) {
+                y_max = y_max.max(h.wp.amax());
+                w_max = w_max.max(h.w);
+                *x = (h.wp * c, h.w * c);
             }
-            for (b, (hb, &sb)) in net.iter().zip(&self.scales).enumerate().skip(a + 1) {
-                let at = (ia + b / cols) * out_cols + ja + b % cols;
-                // Doubled exactly: the pair (a, b) and the pair (b, a).
-                self.f[at] += 2.0 * ya.dot(&(hb.wp * sb));
+            for a in 0..n {
+                let ((ya, wa), pa) = (scaled[a], self.places[a]);
+                self.f[2 * pa] += ya.dot(&ya);
                 if rational {
-                    self.w[at] += 2.0 * wa * (hb.w * sb);
+                    self.w[2 * pa] += wa * wa;
+                }
+                for b in a + 1..n {
+                    let ((yb, wb), at) = (scaled[b], pa + self.places[b]);
+                    // Doubled exactly: the pair (a, b) and the pair (b, a).
+                    self.f[at] += 2.0 * ya.dot(&yb);
+                    if rational {
+                        self.w[at] += 2.0 * wa * wb;
+                    }
                 }
             }
-        }
+        });
         for (x, inv) in self.f.iter_mut().zip(&self.inverses) {
             *x *= inv;
         }
@@ -158,12 +197,10 @@ impl DistanceForm {
             }
         }
         let gamma = ((p + 1) as f64 * (q + 1) as f64 + 12.0) * U * 1.01;
-        let y = y_max + e_y;
-        self.f_error = 3.0 * (2.0 * y * e_y + e_y * e_y) + 3.0 * gamma * y * y;
+        self.f_error = 3.0 * gamma * y_max * y_max;
         self.f_max = self.f.iter().fold(0.0, |m, &x| m.max(x.abs()));
         if rational {
-            let w = w_max + e_w;
-            self.w_error = 2.0 * w * e_w + e_w * e_w + gamma * w * w;
+            self.w_error = gamma * w_max * w_max;
             self.w_max = self.w.iter().fold(0.0, |m, &x| m.max(x.abs()));
         } else {
             self.w_error = 0.0;
@@ -171,14 +208,20 @@ impl DistanceForm {
         }
     }
 
-    /// A lower bound, rounding included, of `F − level·W` on the whole
-    /// piece (`level ≥ 0`), using the second-order bound about `c ∈ [0, 1]²`
-    /// (see the module docs): positive means `|S − P|² > level` on the
-    /// whole piece.
-    pub(super) fn lower_bound(&mut self, level: f64, c: (f64, f64)) -> f64 {
-        let (p, q) = self.degrees;
-        let (big_p, big_q) = (2 * p, 2 * q);
-        let cols = big_q + 1;
+    /// Forms `Φ = F̃ − ℓ′²·W̃` for the distance `limit ≥ 0` (see the module
+    /// docs) and returns its least coefficient less the rounding bound: a
+    /// positive value means `|S − P| > limit` on the whole exact piece.
+    pub(super) fn set_limit(&mut self, limit: f64) -> f64 {
+        let (e_y, e_w) = self.net_errors;
+        let w_low = self.w_min - e_w;
+        if !(w_low > 0.0) {
+            self.eta = f64::INFINITY;
+            return f64::NEG_INFINITY;
+        }
+        // ℓ′ ≥ ℓ + (ℓ·e_w + √3·e_Y)/w̃: the net's own error moved into the
+        // level (rounded up).
+        let shifted = (limit + (limit * e_w + 1.7321 * e_y) / w_low) * (1.0 + 4.0 * U);
+        let level = shifted * shifted * (1.0 + 2.0 * U);
         if self.rational {
             for ((phi, f), w) in self.phi.iter_mut().zip(&self.f).zip(&self.w) {
                 *phi = f - level * w;
@@ -188,17 +231,36 @@ impl DistanceForm {
                 *phi = f - level;
             }
         }
-        let eta = self.f_error
+        self.eta = self.f_error
             + level * self.w_error
             + 2.0 * U * (level * self.w_max + self.f_max)
             + UNDERFLOW;
-        let phi = &self.phi;
-        let (least, magnitude) = phi.iter().fold((f64::INFINITY, 0.0_f64), |(l, m), &x| {
-            (l.min(x), m.max(x.abs()))
-        });
+        let (least, magnitude) = self
+            .phi
+            .iter()
+            .fold((f64::INFINITY, 0.0_f64), |(l, m), &x| {
+                (l.min(x), m.max(x.abs()))
+            });
+        self.least = least;
+        self.magnitude = magnitude;
+        least - self.eta
+    }
+
+    /// A lower bound, rounding included, of `Φ` (as [`set_limit`] formed
+    /// it) on the whole piece, the larger of its least coefficient and the
+    /// second-order bound about `c ∈ [0, 1]²` (see the module docs):
+    /// positive means `|S − P|` exceeds the limit on the whole exact piece.
+    ///
+    /// [`set_limit`]: Self::set_limit
+    pub(super) fn lower_bound(&self, c: (f64, f64)) -> f64 {
+        let (p, q) = self.degrees;
+        let (big_p, big_q) = (2 * p, 2 * q);
+        let cols = big_q + 1;
+        let (least, magnitude, eta) = (self.least, self.magnitude, self.eta);
         if least - eta > 0.0 {
             return least - eta;
         }
+        let phi = &self.phi;
         let at = |k: usize, l: usize| phi[k * cols + l];
         // Lower bounds of Φ_ss and Φ_tt, and the largest |Φ_st|.
         let mut a = 0.0_f64;
@@ -262,7 +324,7 @@ fn quadratic_min(g: f64, mu: f64, (lo, hi): (f64, f64)) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Point3, Vector3};
+    use nalgebra::Point3;
 
     /// The formed `F` and `W` agree with `|Y|²` and `w²` evaluated from the
     /// net, and the bound is below the sampled least value of `F − L·W`.
@@ -276,9 +338,10 @@ mod tests {
             })
             .collect();
         let mut form = DistanceForm::new((2, 3));
-        form.load(&net, true, (0.0, 0.0));
+        form.load(&net, true, (0.0, 0.0), 1.0);
         let level = 0.05;
-        let bound = form.lower_bound(level, (0.4, 0.6));
+        form.set_limit(level.sqrt());
+        let bound = form.lower_bound((0.4, 0.6));
         let mut least = f64::INFINITY;
         for a in 0..=40 {
             for b in 0..=40 {
@@ -292,7 +355,6 @@ mod tests {
             }
         }
         assert!(bound <= least, "{bound} > {least}");
-        let _ = Vector3::<f64>::zeros();
     }
 
     #[test]

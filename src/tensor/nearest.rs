@@ -21,6 +21,16 @@ pub(crate) const MAX_PIECES: usize = 4096;
 /// Newton steps per piece at most.
 const NEWTON_STEPS: usize = 8;
 
+/// A piece's Newton's method stops at a step this short (in the piece's
+/// parameters): its point then is within about the square of that of the
+/// piece's nearest, which is all the bounds need; the winner is polished
+/// to full precision at the end ([`POLISH_STEP`]).
+const PIECE_STEP: f64 = 1e-9;
+
+/// The polish of the winner stops at a step this short (in the patch's
+/// parameters).
+const POLISH_STEP: f64 = 4.0 * f64::EPSILON;
+
 /// The unit roundoff.
 const U: f64 = f64::EPSILON / 2.0;
 
@@ -155,7 +165,16 @@ pub(super) fn nearest_on_patches(patches: &[PatchRef<'_>], p: &Point3<f64>) -> O
             }
         }
     }
+    search.polish();
     let best = search.best;
+    if std::env::var("NEAREST_DEBUG").is_ok() {
+        eprintln!(
+            "DEBUG examined {examined} heap {} best {:e} delta {:e}",
+            heap.len(),
+            best.distance,
+            search.delta
+        );
+    }
     Some(Found {
         patch: best.slot,
         st: best.st,
@@ -258,6 +277,19 @@ impl Search {
         Some(search)
     }
 
+    /// Polishes the best point by Newton's method on its whole patch.
+    fn polish(&mut self) {
+        let Best { slot, st, .. } = self.best;
+        if !self.best.distance.is_finite() {
+            return;
+        }
+        self.restrict(slot, ((0.0, 1.0), (0.0, 1.0)));
+        let cols = self.slots[slot].degrees.1 + 1;
+        let len = (self.slots[slot].degrees.0 + 1) * cols;
+        let (st, distance) = newton(&self.net[..len], cols, st, POLISH_STEP);
+        self.best.offer(distance, slot, st);
+    }
+
     /// `(best − δ)²`, the squared distance a piece must beat, or `None`
     /// once the best point is within `δ`.
     fn level(&self) -> Option<f64> {
@@ -314,6 +346,9 @@ impl Search {
         for j in 0..cols {
             restrict_line(net, j, cols, rows, s);
         }
+        if !self.slots[slot].rational {
+            net.iter_mut().for_each(|h| h.w = 1.0);
+        }
     }
 
     /// A lower bound of the squared distance of the piece in `self.net`
@@ -368,14 +403,25 @@ impl Search {
         if key >= self.level()? {
             return None;
         }
-        // Newton's method from the start point, in the piece's parameters.
-        let local = |x: f64, (a, b): (f64, f64)| ((x - a) / (b - a)).clamp(0.0, 1.0);
-        let start = (local(piece.start.0, piece.s), local(piece.start.1, piece.t));
         let (rows, cols) = (
             self.slots[slot].degrees.0 + 1,
             self.slots[slot].degrees.1 + 1,
         );
-        let (c, distance) = newton(&self.net[..rows * cols], cols, start);
+        let net = &self.net[..rows * cols];
+        // The least coefficient of the squared distance's form first: it
+        // settles most pieces away from the nearest point without Newton.
+        let slot_data = &self.slots[slot];
+        let mut form = slot_data.form.map(|k| &mut self.forms[k]);
+        if let Some(form) = form.as_deref_mut() {
+            form.load(net, slot_data.rational, slot_data.errors, slot_data.w_min);
+            if form.set_limit(self.best.distance - self.delta) > 0.0 {
+                return None;
+            }
+        }
+        // Newton's method from the start point, in the piece's parameters.
+        let local = |x: f64, (a, b): (f64, f64)| ((x - a) / (b - a)).clamp(0.0, 1.0);
+        let start = (local(piece.start.0, piece.s), local(piece.start.1, piece.t));
+        let (c, distance) = newton(net, cols, start, PIECE_STEP);
         let global = |x: f64, (a, b): (f64, f64)| {
             if x <= 0.0 {
                 a
@@ -387,14 +433,12 @@ impl Search {
         };
         let st = (global(c.0, piece.s), global(c.1, piece.t));
         self.best.offer(distance, slot, st);
-        let level = self.level()?;
-        if let Some(k) = self.slots[slot].form {
-            let Slot {
-                rational, errors, ..
-            } = self.slots[slot];
-            let form = &mut self.forms[k];
-            form.load(&self.net[..rows * cols], rational, errors);
-            if form.lower_bound(level, c) > 0.0 {
+        let limit = self.best.distance - self.delta;
+        if !(limit > 0.0) {
+            return None;
+        }
+        if let Some(form) = form {
+            if form.set_limit(limit) > 0.0 || form.lower_bound(c) > 0.0 {
                 return None;
             }
         }
@@ -468,9 +512,14 @@ fn restrict_line(
 /// a coordinate on a side where the gradient points out is held there and
 /// the other solved alone; where the Hessian is not positive definite the
 /// Gauss–Newton matrix `JᵀJ` (damped) takes its place; a step that does
-/// not descend is halved. Returns the nearest point evaluated and its
-/// distance.
-fn newton(net: &[Homogeneous<3>], cols: usize, start: (f64, f64)) -> ((f64, f64), f64) {
+/// not descend is halved; it stops at a step below `shortest`. Returns
+/// the nearest point evaluated and its distance.
+fn newton(
+    net: &[Homogeneous<3>],
+    cols: usize,
+    start: (f64, f64),
+    shortest: f64,
+) -> ((f64, f64), f64) {
     let mut x = start;
     let mut best = (x, f64::INFINITY);
     let mut previous: Option<((f64, f64), f64)> = None;
@@ -514,7 +563,7 @@ fn newton(net: &[Homogeneous<3>], cols: usize, start: (f64, f64)) -> ((f64, f64)
             (x.0 + step[0]).clamp(0.0, 1.0),
             (x.1 + step[1]).clamp(0.0, 1.0),
         );
-        if (next.0 - x.0).abs().max((next.1 - x.1).abs()) <= 4.0 * f64::EPSILON {
+        if (next.0 - x.0).abs().max((next.1 - x.1).abs()) <= shortest {
             break;
         }
         previous = Some((x, f));
