@@ -10,13 +10,19 @@ use crate::curve::{Homogeneous, check_query_point, power_of_two_near};
 use crate::{
     BSplineSurface, BezierPatches, BezierSurface, Error, NurbsSurface, Surface, SurfaceNearest,
 };
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// The most pieces a query examines (patches included); past it the best
 /// point so far is returned with `certified: false`.
 pub(crate) const MAX_PIECES: usize = 4096;
+
+/// The largest allowance `δ`, relative to the problem's size, for which an
+/// answer is called certified (weights within a patch so unequal that the
+/// rounding allowance would exceed it are searched with this allowance,
+/// uncertified).
+const MAX_RELATIVE_ALLOWANCE: f64 = 1e-8;
 
 /// Newton steps per piece at most.
 const NEWTON_STEPS: usize = 8;
@@ -26,6 +32,9 @@ const NEWTON_STEPS: usize = 8;
 /// piece's nearest, which is all the bounds need; the winner is polished
 /// to full precision at the end ([`POLISH_STEP`]).
 const PIECE_STEP: f64 = 1e-9;
+
+/// Newton steps of the final polish at most.
+const POLISH_STEPS: usize = 16;
 
 /// The polish of the winner stops at a step this short (in the patch's
 /// parameters).
@@ -121,6 +130,9 @@ struct Search {
     best: Best,
     /// The allowance `δ`, scaled.
     delta: f64,
+    /// Whether `δ` is the rounding allowance (not capped at
+    /// [`MAX_RELATIVE_ALLOWANCE`]).
+    trusted: bool,
 }
 
 /// The nearest point of the patches to `p` (finite, checked by the caller);
@@ -131,7 +143,7 @@ pub(super) fn nearest_on_patches(patches: &[PatchRef<'_>], p: &Point3<f64>) -> O
     for slot in 0..search.slots.len() {
         let whole = ((0.0, 1.0), (0.0, 1.0));
         search.restrict(slot, whole);
-        let (key, _) = search.box_bound(slot);
+        let key = search.box_bound(slot);
         let start = search.nearest_net_point(slot);
         heap.push(Piece {
             key,
@@ -178,7 +190,7 @@ pub(super) fn nearest_on_patches(patches: &[PatchRef<'_>], p: &Point3<f64>) -> O
     Some(Found {
         patch: best.slot,
         st: best.st,
-        certified,
+        certified: certified && search.trusted,
     })
 }
 
@@ -253,7 +265,9 @@ impl Search {
             };
             slot.errors = (steps * U * magnitude * scale, e_w);
         }
-        let delta = allowance((p_max, q_max), ratio, size) * scale;
+        let delta = allowance((p_max, q_max), ratio, size);
+        let trusted = delta <= MAX_RELATIVE_ALLOWANCE * size;
+        let delta = delta.min(MAX_RELATIVE_ALLOWANCE * size) * scale;
         let most = patches
             .iter()
             .map(|patch| patch.net.len())
@@ -270,6 +284,7 @@ impl Search {
                 st: (0.0, 0.0),
             },
             delta,
+            trusted,
         };
         for slot in 0..search.slots.len() {
             search.offer_corners(slot);
@@ -286,8 +301,14 @@ impl Search {
         self.restrict(slot, ((0.0, 1.0), (0.0, 1.0)));
         let cols = self.slots[slot].degrees.1 + 1;
         let len = (self.slots[slot].degrees.0 + 1) * cols;
-        let (st, distance) = newton(&self.net[..len], cols, st, POLISH_STEP);
-        self.best.offer(distance, slot, st);
+        let net = &self.net[..len];
+        let (st, distance) = newton(net, cols, st, (POLISH_STEPS, POLISH_STEP));
+        // Kept unless farther beyond rounding: Newton's point is the more
+        // accurate one where distances differ by rounding only.
+        let reach = net.iter().fold(0.0_f64, |m, h| m.max(h.wp.amax() / h.w));
+        if distance <= self.best.distance + 16.0 * f64::EPSILON * reach {
+            self.best = Best { distance, slot, st };
+        }
     }
 
     /// `(best − δ)²`, the squared distance a piece must beat, or `None`
@@ -351,36 +372,29 @@ impl Search {
         }
     }
 
-    /// A lower bound of the squared distance of the piece in `self.net`
-    /// (the box of its projected control points, rounding allowed for),
-    /// and whether to cut it in `s` (its control polygon is longer in `s`
-    /// than in `t`).
-    fn box_bound(&self, slot: usize) -> (f64, bool) {
+    /// A lower bound of the squared distance of the piece in `self.net`:
+    /// the box of its projected control points, rounding allowed for.
+    fn box_bound(&self, slot: usize) -> f64 {
         let Slot {
             degrees,
+            rational,
             errors: (e_y, e_w),
             w_min,
             ..
         } = self.slots[slot];
-        let (rows, cols) = (degrees.0 + 1, degrees.1 + 1);
-        let net = &self.net[..rows * cols];
-        let point = |k: usize| net[k].wp / net[k].w;
-        let (mut lo, mut hi) = (
-            Vector3::repeat(f64::INFINITY),
-            Vector3::repeat(f64::NEG_INFINITY),
-        );
-        let (mut along_s, mut along_t) = (0.0, 0.0);
-        for i in 0..rows {
-            for j in 0..cols {
-                let x = point(i * cols + j);
+        let net = &self.net[..(degrees.0 + 1) * (degrees.1 + 1)];
+        let first = net[0].wp / net[0].w;
+        let (mut lo, mut hi) = (first, first);
+        if rational {
+            for h in &net[1..] {
+                let x = h.wp / h.w;
                 lo = lo.inf(&x);
                 hi = hi.sup(&x);
-                if i + 1 < rows {
-                    along_s += (point((i + 1) * cols + j) - x).amax();
-                }
-                if j + 1 < cols {
-                    along_t += (point(i * cols + j + 1) - x).amax();
-                }
+            }
+        } else {
+            for h in &net[1..] {
+                lo = lo.inf(&h.wp);
+                hi = hi.sup(&h.wp);
             }
         }
         let reach = lo.abs().sup(&hi.abs()).amax();
@@ -390,7 +404,31 @@ impl Search {
             let gap = (lo[c] - pad).max(-hi[c] - pad).max(0.0);
             gap2 += gap * gap;
         }
-        (gap2, along_s >= along_t)
+        gap2
+    }
+
+    /// Whether to cut the piece in `self.net` across `s`: its control
+    /// polygon is at least as long along `s` as along `t`.
+    fn cut_in_s(&self, slot: usize) -> bool {
+        let (rows, cols) = (
+            self.slots[slot].degrees.0 + 1,
+            self.slots[slot].degrees.1 + 1,
+        );
+        let net = &self.net[..rows * cols];
+        let point = |k: usize| net[k].wp / net[k].w;
+        let (mut along_s, mut along_t) = (0.0, 0.0);
+        for i in 0..rows {
+            for j in 0..cols {
+                let x = point(i * cols + j);
+                if i + 1 < rows {
+                    along_s += (point((i + 1) * cols + j) - x).amax();
+                }
+                if j + 1 < cols {
+                    along_t += (point(i * cols + j + 1) - x).amax();
+                }
+            }
+        }
+        along_s >= along_t
     }
 
     /// Examines a piece: `None` when it is settled (no point of it can beat
@@ -399,7 +437,7 @@ impl Search {
     fn examine(&mut self, piece: &Piece) -> Option<Option<(Piece, Piece)>> {
         let slot = piece.slot;
         self.restrict(slot, (piece.s, piece.t));
-        let (key, cut_s) = self.box_bound(slot);
+        let key = self.box_bound(slot);
         if key >= self.level()? {
             return None;
         }
@@ -421,7 +459,7 @@ impl Search {
         // Newton's method from the start point, in the piece's parameters.
         let local = |x: f64, (a, b): (f64, f64)| ((x - a) / (b - a)).clamp(0.0, 1.0);
         let start = (local(piece.start.0, piece.s), local(piece.start.1, piece.t));
-        let (c, distance) = newton(net, cols, start, PIECE_STEP);
+        let (c, distance) = newton(net, cols, start, (NEWTON_STEPS, PIECE_STEP));
         let global = |x: f64, (a, b): (f64, f64)| {
             if x <= 0.0 {
                 a
@@ -442,7 +480,7 @@ impl Search {
                 return None;
             }
         }
-        Some(halves(piece, key, cut_s, st))
+        Some(halves(piece, key, self.cut_in_s(slot), st))
     }
 }
 
@@ -512,30 +550,35 @@ fn restrict_line(
 /// a coordinate on a side where the gradient points out is held there and
 /// the other solved alone; where the Hessian is not positive definite the
 /// Gauss–Newton matrix `JᵀJ` (damped) takes its place; a step that does
-/// not descend is halved; it stops at a step below `shortest`. Returns
-/// the nearest point evaluated and its distance.
+/// not descend (beyond rounding) is halved; it stops after `steps` steps
+/// or at a step below `shortest`. Returns the nearest point evaluated
+/// (the later of two within rounding) and its distance.
 fn newton(
     net: &[Homogeneous<3>],
     cols: usize,
     start: (f64, f64),
-    shortest: f64,
+    (steps, shortest): (usize, f64),
 ) -> ((f64, f64), f64) {
+    // The rounding of a computed |S − P|² (`reach` bounds |S − P|):
+    // differences below it are noise, and the later point is kept.
+    let reach = net.iter().fold(0.0_f64, |m, h| m.max(h.wp.amax() / h.w));
+    let noise = |f: f64| 16.0 * f64::EPSILON * (f + 4.0 * f.sqrt() * reach);
     let mut x = start;
     let mut best = (x, f64::INFINITY);
     let mut previous: Option<((f64, f64), f64)> = None;
     let mut halvings = 0;
-    for _ in 0..NEWTON_STEPS {
+    for _ in 0..steps {
         let d = project_jet(&tensor_jet(net, cols, x.0, x.1, 2), 2);
         let (r, su, sv) = (d[0][0], d[1][0], d[0][1]);
         let f = r.norm_squared();
         if !f.is_finite() {
             break;
         }
-        if f < best.1 {
+        if f <= best.1 + noise(best.1) {
             best = (x, f);
         }
         if let Some((from, f_from)) = previous {
-            if f > f_from && halvings < 4 {
+            if f > f_from + noise(f_from) && halvings < 4 {
                 // No descent: back toward where the step started.
                 halvings += 1;
                 x = ((from.0 + x.0) * 0.5, (from.1 + x.1) * 0.5);

@@ -27,6 +27,9 @@
 //!   ([`reference::revolution`]), Bézier patches by interval subdivision
 //!   and Miranda's theorem ([`reference::patch`]) — and the one interval
 //!   type of the references ([`interval`]).
+//! - [`nearest_reference`]: the reference for nearest-point queries on
+//!   surfaces (dense samples refined by Levenberg–Marquardt steps on
+//!   `Surface::eval` and `partials` alone).
 //! - [`camera`]: a pinhole camera's primary rays (the ray caster's formulas),
 //!   for the benches.
 
@@ -35,6 +38,7 @@ pub mod closed_forms;
 pub mod conic_profiles;
 pub mod exact_roots;
 pub mod interval;
+pub mod nearest_reference;
 pub mod newton_rays;
 pub mod patch_reference;
 pub mod patch_shapes;

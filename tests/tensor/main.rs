@@ -8,6 +8,7 @@
 //! tolerances.
 
 mod bezier_patches;
+mod nearest;
 mod patch_hard_cases;
 mod patch_intersect;
 mod patch_mesh;
