@@ -5,8 +5,9 @@ use super::meridian_newton::meridian_angle;
 use super::surface::Revolution;
 use super::turn_angle::turn_angle;
 use crate::curve::check_query_point;
+use crate::curve::{RationalBezier, RationalBezierSpan};
 use crate::{Curve, CurveProjector, Error, NearestPoint, SurfaceNearest};
-use nalgebra::{Point2, Point3, Vector3};
+use nalgebra::{Point2, Point3, Vector2, Vector3};
 
 impl<C: Curve<2>> Revolution<C> {
     /// The point of the surface nearest to `p`: the least `|S(u, θ) − p|`
@@ -87,31 +88,150 @@ impl<C: Curve<2>> Revolution<C> {
 
     /// The profile's point nearest to `(r, y)` or, where the profile
     /// reaches `x < 0`, to `(−r, y)` (`r ≥ 0`), whichever is nearer (the
-    /// first on a tie).
+    /// first on a tie). A query point beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE) (a far point turned into
+    /// the local frame) is answered with the profile and the point scaled
+    /// by ¼ (exactly), the lengths scaled back.
     fn profile_nearest(&self, r: f64, y: f64) -> Result<NearestPoint<2>, Error> {
-        let (outer, inner) = (Point2::new(r, y), Point2::new(-r, y));
+        let factor = if r.max(y.abs()) > crate::MAX_COORDINATE {
+            0.25
+        } else {
+            1.0
+        };
+        let (outer, inner) = (Point2::new(r, y) * factor, Point2::new(-r, y) * factor);
         let nearer = |a: NearestPoint<2>, b: NearestPoint<2>| {
             if b.distance < a.distance { b } else { a }
         };
-        match self.profile.rational_bezier_spans() {
-            Some(spans) => {
+        let near = match self.profile.rational_bezier_spans() {
+            Some(mut spans) => {
+                if factor != 1.0 {
+                    for span in &mut spans {
+                        let points = span.curve.points().iter().map(|q| q * factor).collect();
+                        let weights = span.curve.weights().to_vec();
+                        span.curve = RationalBezier::new(points, weights)?;
+                    }
+                }
                 let negative = spans
                     .iter()
                     .any(|s| s.curve.points().iter().any(|q| q.x < 0.0));
-                let projector = CurveProjector::from_spans(spans)?;
-                let near = projector.nearest(&outer)?;
+                let projector = CurveProjector::from_spans(spans.clone())?;
+                let near = polish(&spans, &outer, projector.nearest(&outer)?);
                 if negative && r > 0.0 {
-                    return Ok(nearer(near, projector.nearest(&inner)?));
+                    nearer(near, polish(&spans, &inner, projector.nearest(&inner)?))
+                } else {
+                    near
                 }
-                Ok(near)
+            }
+            None if factor != 1.0 => {
+                let scaled = Scaled {
+                    curve: &self.profile,
+                    factor,
+                };
+                nearer(scaled.nearest_point(&outer)?, scaled.nearest_point(&inner)?)
             }
             None => {
                 let near = self.profile.nearest_point(&outer)?;
                 if r > 0.0 {
-                    return Ok(nearer(near, self.profile.nearest_point(&inner)?));
+                    nearer(near, self.profile.nearest_point(&inner)?)
+                } else {
+                    near
                 }
-                Ok(near)
             }
+        };
+        Ok(NearestPoint {
+            point: near.point / factor,
+            distance: near.distance / factor,
+            ..near
+        })
+    }
+}
+
+/// Newton steps of the polish at most.
+const POLISH_STEPS: usize = 8;
+
+/// The profile's nearest point `near` to `q` polished by Newton's method on
+/// its span, `f(s) = (C(s) − q)·C′(s)` with `f′ = |C′|² + (C − q)·C″` (the
+/// span's own derivatives), kept in the span; the polished point replaces
+/// `near` unless it is farther beyond rounding (the root isolation places
+/// the point to about `10⁻¹⁰`; the distance is flat there, the point is
+/// not).
+fn polish(
+    spans: &[RationalBezierSpan<2>],
+    q: &Point2<f64>,
+    near: NearestPoint<2>,
+) -> NearestPoint<2> {
+    let Some(span) = spans
+        .iter()
+        .find(|s| s.knots.0 <= near.t && near.t <= s.knots.1)
+    else {
+        return near;
+    };
+    let (a, b) = span.knots;
+    let mut s = ((near.t - a) / (b - a)).clamp(0.0, 1.0);
+    let mut d = [Vector2::zeros(); 3];
+    let mut last_step = f64::INFINITY;
+    for _ in 0..POLISH_STEPS {
+        if span.curve.derivatives(s, &mut d).is_err() {
+            return near;
         }
+        let r = d[0] - q.coords;
+        let (f, df) = (r.dot(&d[1]), d[1].norm_squared() + r.dot(&d[2]));
+        if !(df > 0.0 && f.is_finite() && df.is_finite()) {
+            break;
+        }
+        let next = (s - f / df).clamp(0.0, 1.0);
+        let step = (next - s).abs();
+        if step >= last_step || step == 0.0 {
+            break;
+        }
+        (s, last_step) = (next, step);
+        if step <= 4.0 * f64::EPSILON {
+            break;
+        }
+    }
+    let point = if s <= 0.0 {
+        span.curve.points()[0]
+    } else if s >= 1.0 {
+        span.curve.points()[span.curve.points().len() - 1]
+    } else {
+        span.curve.eval(s)
+    };
+    let distance = (point - q).norm();
+    let size = point.coords.amax().max(q.coords.amax());
+    if distance <= near.distance + 16.0 * f64::EPSILON * size {
+        let t = if s <= 0.0 {
+            a
+        } else if s >= 1.0 {
+            b
+        } else {
+            a + (b - a) * s
+        };
+        NearestPoint {
+            t,
+            point,
+            distance,
+            ..near
+        }
+    } else {
+        near
+    }
+}
+
+/// A profile scaled by a power of two (for far query points), known by its
+/// values and derivatives alone.
+struct Scaled<'a, C> {
+    curve: &'a C,
+    factor: f64,
+}
+
+impl<C: Curve<2>> Curve<2> for Scaled<'_, C> {
+    fn domain(&self) -> (f64, f64) {
+        self.curve.domain()
+    }
+    fn eval(&self, t: f64) -> Point2<f64> {
+        self.curve.eval(t) * self.factor
+    }
+    fn derivative(&self, t: f64) -> Vector2<f64> {
+        self.curve.derivative(t) * self.factor
     }
 }

@@ -10,6 +10,7 @@
 mod batch;
 mod hard_cases;
 mod mesh;
+mod nearest;
 mod newton;
 mod own_profiles;
 mod rational_revolution;
