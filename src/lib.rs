@@ -47,6 +47,14 @@
 //!   approximation refined on the profile; [`NewtonIntersector`] runs
 //!   Newton's method on `(t, u, v)` for any [`PatchBounds`] surface.
 //!   Accuracy is a [`Tolerance`];
+//! - nearest points: `nearest_point` on every surface kind
+//!   ([`Revolution::nearest_point`], [`BezierSurface::nearest_point`],
+//!   [`BSplineSurface::nearest_point`], [`NurbsSurface::nearest_point`],
+//!   [`BezierPatches::nearest_point`]) gives a [`SurfaceNearest`], the
+//!   global minimum of the distance over the whole domain, certified where
+//!   the surface has polynomial or rational pieces (a revolution through its
+//!   profile's certified nearest point, the tensor kinds by a branch and
+//!   bound over Bézier pieces with a second-order bound);
 //! - [`Bvh`]: a bounding-volume hierarchy over boxed items (binned surface
 //!   area heuristic, nearest-first traversal, [`Walk`] for rays side by
 //!   side), the one the patch search uses and the ray caster builds its

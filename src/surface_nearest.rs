@@ -34,7 +34,7 @@ use nalgebra::Point3;
 /// let near = sphere.nearest_point(&p)?;
 /// assert!((near.point - p / 3.0).norm() < 1e-15);
 /// assert!((near.distance - 2.0).abs() < 1e-15 && near.certified);
-/// assert_eq!(near.point, sphere.eval(near.uv.0, near.uv.1));
+/// assert!((sphere.eval(near.uv.0, near.uv.1) - near.point).norm() < 1e-15);
 /// # Ok::<(), revolve::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -178,8 +178,9 @@ impl DistanceForm {
                 if rational {
                     self.w[2 * pa] += wa * wa;
                 }
-                for b in a + 1..n {
-                    let ((yb, wb), at) = (scaled[b], pa + self.places[b]);
+                let rest = scaled[a + 1..].iter().zip(&self.places[a + 1..]);
+                for (&(yb, wb), &pb) in rest {
+                    let at = pa + pb;
                     // Doubled exactly: the pair (a, b) and the pair (b, a).
                     self.f[at] += 2.0 * ya.dot(&yb);
                     if rational {
@@ -214,7 +215,7 @@ impl DistanceForm {
     pub(super) fn set_limit(&mut self, limit: f64) -> f64 {
         let (e_y, e_w) = self.net_errors;
         let w_low = self.w_min - e_w;
-        if !(w_low > 0.0) {
+        if w_low <= 0.0 || w_low.is_nan() {
             self.eta = f64::INFINITY;
             return f64::NEG_INFINITY;
         }
@@ -339,7 +340,7 @@ mod tests {
             .collect();
         let mut form = DistanceForm::new((2, 3));
         form.load(&net, true, (0.0, 0.0), 1.0);
-        let level = 0.05;
+        let level: f64 = 0.05;
         form.set_limit(level.sqrt());
         let bound = form.lower_bound((0.4, 0.6));
         let mut least = f64::INFINITY;

@@ -179,14 +179,6 @@ pub(super) fn nearest_on_patches(patches: &[PatchRef<'_>], p: &Point3<f64>) -> O
     }
     search.polish();
     let best = search.best;
-    if std::env::var("NEAREST_DEBUG").is_ok() {
-        eprintln!(
-            "DEBUG examined {examined} heap {} best {:e} delta {:e}",
-            heap.len(),
-            best.distance,
-            search.delta
-        );
-    }
     Some(Found {
         patch: best.slot,
         st: best.st,
@@ -315,7 +307,7 @@ impl Search {
     /// once the best point is within `δ`.
     fn level(&self) -> Option<f64> {
         let limit = self.best.distance - self.delta;
-        (limit > 0.0).then(|| limit * limit)
+        (limit > 0.0).then_some(limit * limit)
     }
 
     /// The patch's four corner points (its corner control points).
@@ -472,7 +464,7 @@ impl Search {
         let st = (global(c.0, piece.s), global(c.1, piece.t));
         self.best.offer(distance, slot, st);
         let limit = self.best.distance - self.delta;
-        if !(limit > 0.0) {
+        if limit <= 0.0 || limit.is_nan() {
             return None;
         }
         if let Some(form) = form {
@@ -728,8 +720,7 @@ impl BezierSurface {
     /// use revolve::{BezierSurface, Surface};
     /// use revolve::nalgebra::Point3;
     ///
-    /// // The bilinear saddle S(u, v) = (u, v, u·v): from above (0.5, 0.5)
-    /// // the nearest point is beneath it... almost: the saddle is not flat.
+    /// // The bilinear saddle S(u, v) = (u, v, u·v), from a point above it.
     /// let s = BezierSurface::new(vec![
     ///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
     ///     vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
