@@ -709,12 +709,16 @@ impl BezierSurface {
     /// box. `distance` itself is `|point − p|` for the point found, accurate
     /// to rounding (Newton's method converges quadratically there).
     ///
-    /// The search examines at most 4096 pieces (a bicubic takes a few to a
-    /// few dozen; a point very near the surface, but not on it, takes more,
-    /// about `log₂(size/distance)` levels of halving). Past the cap, and
-    /// for degrees above 24 (no Bernstein form: boxes alone, which settle a
-    /// minimum only by luck), the best point found is returned with
-    /// `certified: false`.
+    /// The search examines at most 4096 pieces: a bicubic takes from one to
+    /// a few dozen, more for a point very near the surface but not on it
+    /// (the pieces about the nearest point are halved until they are within
+    /// a few orders of magnitude of the distance: a few dozen more at
+    /// `10⁻¹²` of the size). Past the cap, for degrees above 24 (no
+    /// Bernstein form: boxes alone, which settle a minimum only by luck),
+    /// and where `δ` would exceed `10⁻⁸` of the size (weights within a
+    /// patch differing by a factor of about 300 or more, for a bicubic; the
+    /// search then uses `δ = 10⁻⁸·size`), the best point found is returned
+    /// with `certified: false`.
     ///
     /// ```
     /// use revolve::{BezierSurface, Surface};
