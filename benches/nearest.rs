@@ -72,7 +72,9 @@ fn benches(c: &mut Criterion) {
         goblet.nearest_point(p)
     });
     let bicubic = common::patch_shapes::gentle_bicubic();
-    bench_kind(c, "bicubic", &bicubic.bounds(), |p| bicubic.nearest_point(p));
+    bench_kind(c, "bicubic", &bicubic.bounds(), |p| {
+        bicubic.nearest_point(p)
+    });
     let octant = common::tensor_shapes::sphere_octant(1.0);
     bench_kind(c, "nurbs_sphere_octant", &octant.bounds(), |p| {
         octant.nearest_point(p)

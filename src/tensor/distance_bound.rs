@@ -21,11 +21,14 @@
 //! - to second order about a point `c` of the piece: `Φ(c + d) ≥ Φ(c) +
 //!   ∇Φ(c)·d + ½·dᵀHd` for a matrix `H` below every Hessian of `Φ` on the
 //!   piece, whose entries are bounded by the Bernstein coefficients of
-//!   `Φ`'s second derivatives (`2p(2p − 1)·Δ²`, `2p·2q·ΔΔ`); with
-//!   `H_ss ≥ a`, `H_tt ≥ c` and `|H_st| ≤ b`, `dᵀHd ≥ (a − b)d_s² + (c −
-//!   b)d_t²`, and, when `a, c > 0` and `ρ = b/√(ac) < 1`, `dᵀHd ≥ (1 −
-//!   ρ)(a·d_s² + c·d_t²)`; both are separable, so their least value over
-//!   the piece is the sum of two one-dimensional quadratic minima.
+//!   `Φ`'s second derivatives (`2p(2p − 1)·Δ²`, `2p·2q·ΔΔ`): with
+//!   `H_ss ≥ a`, `H_tt ≥ c` and `b_lo ≤ H_st ≤ b_hi`, `dᵀHd ≥ a·d_s² +
+//!   2b·d_s·d_t + c·d_t²` with `b = b_lo` where `d_s·d_t ≥ 0` and `b = b_hi`
+//!   elsewhere, so the bound is the least of four quadratics, each over one
+//!   quadrant of the piece about `c` (a rectangle: the interior critical
+//!   point if the quadratic is convex, else its sides, one-dimensional
+//!   quadratics). Exact for a quadratic `Φ`, however skewed the
+//!   parametrization.
 //!
 //! The second bound is what ends the search near a minimum: about the
 //! piece's own nearest point (found by Newton's method), where `∇Φ` is
@@ -284,32 +287,69 @@ impl DistanceForm {
             }
             c_tt *= (big_q * (big_q - 1)) as f64;
         }
-        let mut b = 0.0_f64;
+        let (mut b_lo, mut b_hi) = (0.0_f64, 0.0_f64);
         if big_p >= 1 && big_q >= 1 {
+            (b_lo, b_hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for k in 0..big_p {
                 for l in 0..big_q {
                     let mixed = at(k + 1, l + 1) - at(k + 1, l) - at(k, l + 1) + at(k, l);
-                    b = b.max(mixed.abs());
+                    b_lo = b_lo.min(mixed);
+                    b_hi = b_hi.max(mixed);
                 }
             }
-            b *= (big_p * big_q) as f64;
+            let factor = (big_p * big_q) as f64;
+            (b_lo, b_hi) = (b_lo * factor, b_hi * factor);
         }
         let jet = tensor_jet(phi, cols, c.0, c.1, 1);
-        let (value, gs, gt) = (jet[0][0], jet[1][0], jet[0][1]);
-        let box_s = (-c.0, 1.0 - c.0);
-        let box_t = (-c.1, 1.0 - c.1);
-        let mut taylor =
-            value + quadratic_min(gs, a - b, box_s) + quadratic_min(gt, c_tt - b, box_t);
-        if a > 0.0 && c_tt > 0.0 && b < (a * c_tt).sqrt() {
-            let keep = 1.0 - b / (a * c_tt).sqrt();
-            let convex =
-                value + quadratic_min(gs, keep * a, box_s) + quadratic_min(gt, keep * c_tt, box_t);
-            taylor = taylor.max(convex);
-        }
+        let (value, g) = (jet[0][0], [jet[1][0], jet[0][1]]);
+        // The quadratic model's least value on each quadrant about c: where
+        // d_s·d_t ≥ 0 the mixed term is at least b_lo·d_s·d_t, elsewhere at
+        // least b_hi·d_s·d_t.
+        let (s0, s1, t0, t1) = (-c.0, 1.0 - c.0, -c.1, 1.0 - c.1);
+        let quadrants = [
+            (b_lo, (0.0, s1), (0.0, t1)),
+            (b_lo, (s0, 0.0), (t0, 0.0)),
+            (b_hi, (0.0, s1), (t0, 0.0)),
+            (b_hi, (s0, 0.0), (0.0, t1)),
+        ];
+        let taylor = value
+            + quadrants
+                .iter()
+                .map(|&(b, ds, dt)| rectangle_min(g, [a, b, c_tt], ds, dt))
+                .fold(f64::INFINITY, f64::min);
         let sides = (big_p + big_q + 2) as f64;
         let eval = 16.0 * U * magnitude * sides * sides;
         least.max(taylor) - eta - eval
     }
+}
+
+/// The least value of `g·d + ½·dᵀHd`, `H = [h₀ h₁; h₁ h₂]`, for `d` in
+/// the rectangle `ds × dt`: at the interior critical point if `H` is
+/// positive definite and it lies inside, else on a side (each side a
+/// one-dimensional quadratic).
+fn rectangle_min(g: [f64; 2], h: [f64; 3], ds: (f64, f64), dt: (f64, f64)) -> f64 {
+    let q = |x: f64, y: f64| {
+        g[0] * x + g[1] * y + 0.5 * (h[0] * x * x + 2.0 * h[1] * x * y + h[2] * y * y)
+    };
+    let mut least = f64::INFINITY;
+    for x in [ds.0, ds.1] {
+        // q(x, y) = const + (g₁ + h₁x)·y + ½h₂y².
+        let base = g[0] * x + 0.5 * h[0] * x * x;
+        least = least.min(base + quadratic_min(g[1] + h[1] * x, h[2], dt));
+    }
+    for y in [dt.0, dt.1] {
+        let base = g[1] * y + 0.5 * h[2] * y * y;
+        least = least.min(base + quadratic_min(g[0] + h[1] * y, h[0], ds));
+    }
+    let det = h[0] * h[2] - h[1] * h[1];
+    if h[0] > 0.0 && det > 0.0 {
+        let x = -(h[2] * g[0] - h[1] * g[1]) / det;
+        let y = -(h[0] * g[1] - h[1] * g[0]) / det;
+        if ds.0 <= x && x <= ds.1 && dt.0 <= y && y <= dt.1 {
+            least = least.min(q(x, y));
+        }
+    }
+    least
 }
 
 /// The least value of `g·d + ½μ·d²` for `d` in `[lo, hi]`.
