@@ -15,6 +15,7 @@ mod control_net;
 mod distance_bound;
 mod krawczyk;
 mod nearest;
+mod nearest_newton;
 mod newton_polish;
 mod nurbs_surface;
 mod patch;
