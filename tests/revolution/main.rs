@@ -2,7 +2,7 @@
 //! partials, normals and intersections against independent references, the
 //! hard cases of DESIGN.md §5, rational profiles against exact closed forms,
 //! users' own profile types, batches of rays, the generic Newton intersector
-//! on revolutions, and tessellation.
+//! on revolutions, nearest points, and tessellation.
 //!
 //! One module per subject; each module's docs state its references and
 //! tolerances.

@@ -2,7 +2,8 @@
 //! surfaces, `BezierPatches` models): evaluation against closed forms and an
 //! independent evaluator, the certified ray–patch intersector against closed
 //! forms and an independent reference (`revolve_testkit::patch_reference`),
-//! its hard cases, and tessellation.
+//! its hard cases, nearest points (against closed forms and refined dense
+//! samples), and tessellation.
 //!
 //! One module per subject; each module's docs state its references and
 //! tolerances.
