@@ -2,7 +2,7 @@
 //! intersected through a hierarchy over the patches' pieces.
 
 use super::patch::Patch;
-use super::search::intersect;
+use super::search::{intersect, occluded};
 use super::search_pieces::SearchPieces;
 use super::tessellate::tessellate_patches;
 use crate::bernstein::Coefficient;
@@ -175,6 +175,11 @@ fn raise<T: Coefficient>(c: &[T], degree: usize) -> Vec<T> {
 impl Intersect for BezierPatches {
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.intersect_patch(ray, t_min, t_max).map(|(_, hit)| hit)
+    }
+
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        occluded(self.search.set(), ray, t_min, t_max, &self.tolerance)
     }
 
     fn bounds(&self) -> Aabb {

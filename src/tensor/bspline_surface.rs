@@ -256,6 +256,11 @@ impl Intersect for BSplineSurface {
         self.core.table.hit(ray, t_min, t_max)
     }
 
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.core.table.occluded(ray, t_min, t_max)
+    }
+
     fn bounds(&self) -> Aabb {
         self.core.table.bounds()
     }

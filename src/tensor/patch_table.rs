@@ -4,7 +4,7 @@
 //! ray search (its pieces built by the first ray).
 
 use super::patch::{Jet, Patch, first_jet, project_jet, rounding_pad, tensor_jet};
-use super::search::{PatchSet, intersect};
+use super::search::{PatchSet, intersect, occluded};
 use super::search_pieces::SearchPieces;
 use crate::bernstein::restrict;
 use crate::curve::{Homogeneous, power_of_two_near, unit_direction};
@@ -146,6 +146,12 @@ impl PatchTable {
         let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
         let (point, normal) = self.point_and_normal(found.u, found.v);
         found.to_hit(ray, point, normal)
+    }
+
+    /// Whether the ray hits the surface in `(t_min, t_max)`: exactly
+    /// `hit(…).is_some()`, stopping at the first piece with a hit.
+    pub(crate) fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        occluded(self.search_set(), ray, t_min, t_max, &self.tolerance)
     }
 
     /// `S(u, v)` and the [`normal`](Self::normal) there, from one jet.

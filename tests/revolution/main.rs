@@ -12,5 +12,6 @@ mod hard_cases;
 mod mesh;
 mod newton;
 mod own_profiles;
+mod queries;
 mod rational_revolution;
 mod revolution;
