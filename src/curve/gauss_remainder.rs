@@ -87,7 +87,10 @@ fn sample<const D: usize>(
             let slope_size = bernstein::eval(pairs, s).unwrap_or_else(Homogeneous::zero);
             // Value and derivative errors of A and w at s.
             let (ea, ew) = (unit * size.wp[0], unit * size.w);
-            let (ea1, ew1) = (unit * n as f64 * slope_size.wp[0], unit * n as f64 * slope_size.w);
+            let (ea1, ew1) = (
+                unit * n as f64 * slope_size.wp[0],
+                unit * n as f64 * slope_size.w,
+            );
             // N in the piece's parameter: the chain rule's factor `width`.
             let big_n = (slope.wp * value.w - value.wp * slope.w) * width;
             let terms = slope.wp.norm() * value.w.abs() + value.wp.norm() * slope.w.abs();

@@ -1329,10 +1329,10 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
         }
     }
     batch_case(f, &s, &bounds, profile);
-    queries_case(f, &s, &bounds, profile);
     if judged {
         aimed_case(f, &s, &bounds, s.tolerance(), profile);
     }
+    queries_case(f, &s, &bounds, profile);
     if f.chance(8) {
         let scale = bounds.scale();
         let tolerance = match f.below(3) {
@@ -1709,8 +1709,8 @@ fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &
         }
     }
     batch_case(f, s, &bounds, kind);
-    queries_case(f, s, &bounds, kind);
     aimed_case(f, s, &bounds, s.tolerance(), kind);
+    queries_case(f, s, &bounds, kind);
     if f.chance(10) {
         let tolerance = if f.chance(3) {
             f.number()
@@ -1770,7 +1770,8 @@ fn queries_case<S: Intersect + ?Sized>(f: &mut Fuzz, s: &S, bounds: &Aabb, kind:
         } else {
             (0.0, f64::INFINITY)
         };
-        let Some(occluded) = f.call("Intersect::occluded", || s.occluded(&ray, t_min, t_max)) else {
+        let Some(occluded) = f.call("Intersect::occluded", || s.occluded(&ray, t_min, t_max))
+        else {
             continue;
         };
         if f.call("Intersect::intersect_all", || {
@@ -1787,9 +1788,11 @@ fn queries_case<S: Intersect + ?Sized>(f: &mut Fuzz, s: &S, bounds: &Aabb, kind:
         let ordered = hits.windows(2).all(|w| w[0].t < w[1].t);
         let inside = hits.iter().all(|h| h.t > t_min && h.t < t_max);
         let first = hits.first().map(|h| h.t.to_bits()) == single.map(|h| h.t.to_bits());
-        f.check(ordered && inside && first, "Intersect::intersect_all", || {
-            format!("{kind}: {ray:?} ({t_min}, {t_max}): {hits:?}, intersect {single:?}")
-        });
+        f.check(
+            ordered && inside && first,
+            "Intersect::intersect_all",
+            || format!("{kind}: {ray:?} ({t_min}, {t_max}): {hits:?}, intersect {single:?}"),
+        );
     }
 }
 
