@@ -177,9 +177,10 @@ pub(crate) fn reflected_knots(knots: &[f64], degree: usize, n: usize) -> Vec<f64
 /// fixed)`) that are not `fixed` so that consecutive values differ by at
 /// least the gap rule of [`validate_knots`] (with a margin of `2⁻¹⁰`, so
 /// that the ends' own moves cannot make it bite): first up from below, then
-/// down from above. A valid knot vector leaves room for this many times
-/// over (it would need about `1/(8ε)` knots to run out), so the values stay
-/// increasing, the fixed ones in place.
+/// down from above. Each move is a few ulps, and a valid knot vector has
+/// room for them many times over (the passes could run out of room only
+/// with about `1/(8ε)` distinct knots), so the values stay increasing and
+/// the fixed ones in place.
 fn separate_runs(runs: &mut [(f64, usize, bool)]) {
     let last = runs.len() - 1;
     let gap = 4.0 * f64::EPSILON * (runs[last].0 - runs[0].0) * (1.0 + 1.0 / 1024.0);

@@ -23,7 +23,8 @@ use std::f64::consts::TAU;
 /// with `(x′, y′)` the profile's unit tangent. For a profile traced upward
 /// (increasing `y`) it points toward the axis, on either side of it (negative
 /// `x`, as course scene files write profiles, gives the same surface and
-/// orientation as positive `x`).
+/// orientation as positive `x`); [`reversed`](Self::reversed) turns every
+/// normal the other way.
 ///
 /// # Edge rules: the axis
 /// Where the profile meets the axis (`x = 0`) the cross product vanishes. The

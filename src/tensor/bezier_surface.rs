@@ -20,7 +20,8 @@ use nalgebra::{Point3, Unit, Vector3};
 ///
 /// # Edge rules
 /// - Parameters outside `[0, 1]` evaluate at the nearest edge; NaN at 0.
-/// - [`normal`](crate::Surface::normal) is `∂S/∂u × ∂S/∂v` normalized. Where that
+/// - [`normal`](crate::Surface::normal) is `∂S/∂u × ∂S/∂v` normalized
+///   (negated on a [reversed](BezierSurface::reversed) surface). Where that
 ///   cross product is negligible (below `(10⁻⁷·D)²` for the typical first
 ///   derivative `D` = net extent × degree / parameter width; a *collapsed
 ///   edge*, all points of a row equal, as on the teapot's lid), the normal is

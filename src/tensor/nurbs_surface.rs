@@ -129,7 +129,9 @@ impl NurbsSurface {
     /// normal is negated as for
     /// [`BezierSurface::reversed`](crate::BezierSurface::reversed) (the
     /// tessellation's triangles wound the other way), and knot insertion
-    /// keeps the orientation. `reversed().reversed()` is the original.
+    /// keeps the orientation (the plain data of
+    /// [`to_bezier_patches`](Self::to_bezier_patches) has none).
+    /// `reversed().reversed()` is the original.
     pub fn reversed(&self) -> Self {
         let mut surface = self.clone();
         surface.core.table.reversed = !surface.core.table.reversed;
