@@ -9,6 +9,7 @@ use super::span_search::ExactReport;
 use super::span_table::SpanTable;
 use super::surface::profile_normal;
 use crate::ray::acceptance::Acceptance;
+use crate::surface::oriented;
 use crate::{Aabb, Curve, Hit, Intersect, Ray, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 
@@ -53,7 +54,8 @@ impl<C: Curve<2>> Revolution<C> {
         let at_end = local.u >= self.profile.domain().1;
         let finite = |n: &Unit<Vector3<f64>>| n.iter().all(|c| c.is_finite());
         let normal_local = match local.tangent {
-            Some(t) => profile_normal(local.x, t, at_end, local.sin_cos),
+            Some(t) => profile_normal(local.x, t, at_end, local.sin_cos)
+                .map(|n| oriented(n, self.reversed)),
             None => self.normal_local(local.u, local.theta),
         }
         .filter(finite)
