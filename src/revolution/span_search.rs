@@ -329,6 +329,9 @@ impl SpanOrder {
     /// entry is found by selects rather than branches on the data (whose
     /// order follows no pattern from one ray to the next); a visited span's
     /// entry becomes infinite.
+    // Inlined by force: with two instantiations of the search (nearest and
+    // first hit) it was left out of line, 2.5 % more instructions a ray.
+    #[inline(always)]
     fn next_nearest(&mut self, t_best: f64) -> Option<(usize, bool)> {
         let (mut pick, mut least) = (usize::MAX, t_best);
         for (i, &(entry, _)) in self.entries[..self.sorted].iter().enumerate() {
