@@ -6,6 +6,7 @@
 use nalgebra::{Point3, Unit, Vector3};
 use std::collections::HashMap;
 use std::io::{self, Write};
+use std::ops::Range;
 
 /// A triangle mesh with per-vertex normals and surface parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -108,6 +109,19 @@ impl Mesh {
                 .filter(|[a, b, c]| a != b && b != c && a != c)
                 .collect(),
             bound: self.bound,
+        }
+    }
+
+    /// Turns the vertices `vertices` and the triangles `triangles` the other
+    /// way round: their normals negated, each triangle `[a, b, c]` wound as
+    /// `[a, c, b]` (so `(b − a) × (c − a)` follows the new normals). What a
+    /// reversed surface's `tessellate` does to its mesh.
+    pub(crate) fn reverse_orientation(&mut self, vertices: Range<usize>, triangles: Range<usize>) {
+        for n in &mut self.normals[vertices] {
+            *n = -*n;
+        }
+        for t in &mut self.triangles[triangles] {
+            t.swap(1, 2);
         }
     }
 

@@ -9,17 +9,21 @@
 //! | [`BSpline<D>`] | `degree`, `knots`, `points` |
 //! | [`RationalBezier<D>`] | `points`, `weights` |
 //! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
-//! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance` |
-//! | [`BezierSurface`] | `points` (rows along `u`), `tolerance`¹ |
+//! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance`, `reversed`² |
+//! | [`BezierSurface`] | `points` (rows along `u`), `tolerance`¹, `reversed`² |
 //! | [`BezierPatches`] | `patches` (each a [`BezierSurface`]), `tolerance`¹ |
-//! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points`, `tolerance`¹ |
-//! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights`, `tolerance`¹ |
+//! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points`, `tolerance`¹, `reversed`² |
+//! | [`NurbsSurface`] | `degrees`, `knots`, `points`, `weights`, `tolerance`¹, `reversed`² |
 //! | [`Tolerance`] | `relative`, `max_iterations` |
 //! | [`Ray`] | `origin`, `dir` |
 //! | [`Aabb`] | `min`, `max` |
 //!
 //! ¹ Written only when it is not the default; read as the default when
 //! absent.
+//!
+//! ² The orientation flag of `reversed()`: written (`true`) only for a
+//! reversed surface; absent reads as `false`, so data written before the
+//! flag existed still reads.
 //!
 //! Points and vectors are sequences of their coordinates (nalgebra's own
 //! serde form). Reading goes through the public constructor
@@ -218,6 +222,12 @@ fn is_default(t: &Tolerance) -> bool {
     *t == Tolerance::default()
 }
 
+/// Whether an orientation flag is the default `false` (then it is not
+/// written).
+fn is_false(reversed: &bool) -> bool {
+    !*reversed
+}
+
 /// The defining data of a [`BezierSurface`]: its control net, rows along `u`.
 #[derive(Serialize, Deserialize)]
 #[serde(rename = "BezierSurface", deny_unknown_fields)]
@@ -225,6 +235,8 @@ struct BezierSurfaceData<'a> {
     points: Cow<'a, [Vec<Point3<f64>>]>,
     #[serde(default, skip_serializing_if = "is_default")]
     tolerance: Tolerance,
+    #[serde(default, skip_serializing_if = "is_false")]
+    reversed: bool,
 }
 
 impl DefiningData for BezierSurface {
@@ -234,11 +246,13 @@ impl DefiningData for BezierSurface {
         Ok(BezierSurfaceData {
             points: Cow::Borrowed(self.points()),
             tolerance: *self.tolerance(),
+            reversed: self.is_reversed(),
         })
     }
     fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
         BezierSurface::new(data.points.into_owned())
             .map(|s| s.with_tolerance(data.tolerance))
+            .map(|s| if data.reversed { s.reversed() } else { s })
             .map_err(E::custom)
     }
 }
@@ -280,6 +294,8 @@ struct TensorSplineData<'a> {
     weights: Option<Cow<'a, [Vec<f64>]>>,
     #[serde(default, skip_serializing_if = "is_default")]
     tolerance: Tolerance,
+    #[serde(default, skip_serializing_if = "is_false")]
+    reversed: bool,
 }
 
 impl DefiningData for BSplineSurface {
@@ -293,6 +309,7 @@ impl DefiningData for BSplineSurface {
             points: Cow::Borrowed(self.points()),
             weights: None,
             tolerance: *self.tolerance(),
+            reversed: self.is_reversed(),
         })
     }
     fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
@@ -304,6 +321,7 @@ impl DefiningData for BSplineSurface {
         let knots = (data.knots.0.into_owned(), data.knots.1.into_owned());
         BSplineSurface::new(data.degrees, knots, data.points.into_owned())
             .map(|s| s.with_tolerance(data.tolerance))
+            .map(|s| if data.reversed { s.reversed() } else { s })
             .map_err(E::custom)
     }
 }
@@ -319,6 +337,7 @@ impl DefiningData for NurbsSurface {
             points: Cow::Borrowed(self.points()),
             weights: Some(Cow::Borrowed(self.weights())),
             tolerance: *self.tolerance(),
+            reversed: self.is_reversed(),
         })
     }
     fn read<E: de::Error>(data: Self::Read) -> Result<Self, E> {
@@ -329,6 +348,7 @@ impl DefiningData for NurbsSurface {
         let (points, weights) = (data.points.into_owned(), weights.into_owned());
         NurbsSurface::new(data.degrees, knots, points, weights)
             .map(|s| s.with_tolerance(data.tolerance))
+            .map(|s| if data.reversed { s.reversed() } else { s })
             .map_err(E::custom)
     }
 }
@@ -364,6 +384,8 @@ struct RevolutionData<P> {
     origin: Point3<f64>,
     axis: Vector3<f64>,
     tolerance: Tolerance,
+    #[serde(default, skip_serializing_if = "is_false")]
+    reversed: bool,
 }
 
 impl<C: Curve<2>> DefiningData for Revolution<C> {
@@ -383,6 +405,7 @@ impl<C: Curve<2>> DefiningData for Revolution<C> {
             origin: Point3::from(self.to_world().translation.vector),
             axis: *self.scaled_axis(),
             tolerance: *self.tolerance(),
+            reversed: self.reversed,
         })
     }
     fn read<E: de::Error>(data: RevolutionData<C>) -> Result<Self, E> {
@@ -391,6 +414,10 @@ impl<C: Curve<2>> DefiningData for Revolution<C> {
         Revolution::try_new(data.profile)
             .and_then(|r| r.try_with_axis(data.origin, Unit::new_unchecked(data.axis)))
             .map(|r| r.with_tolerance(data.tolerance))
+            .map(|mut r| {
+                r.reversed = data.reversed;
+                r
+            })
             .map_err(E::custom)
     }
 }

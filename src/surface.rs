@@ -23,7 +23,10 @@ pub trait Surface {
 
     /// The unit normal along `∂S/∂u × ∂S/∂v` (the orientation of the
     /// parametrization), or its limit where the cross product vanishes but a
-    /// tangent plane exists. `None` only where no tangent plane exists.
+    /// tangent plane exists. `None` only where no tangent plane exists. A
+    /// surface may take the opposite orientation throughout, along
+    /// `−(∂S/∂u × ∂S/∂v)`, as the crate's surface kinds do after
+    /// `reversed()`.
     ///
     /// The default normalizes the cross product and returns `None` when it is
     /// zero.
@@ -87,4 +90,11 @@ impl<S: PatchBounds + ?Sized> PatchBounds for &S {
     fn periodic(&self) -> [bool; 2] {
         (**self).periodic()
     }
+}
+
+/// `normal`, negated when `reversed`: the orientation flag of the surface
+/// kinds' `reversed()`.
+#[inline]
+pub(crate) fn oriented(normal: Unit<Vector3<f64>>, reversed: bool) -> Unit<Vector3<f64>> {
+    if reversed { -normal } else { normal }
 }

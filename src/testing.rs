@@ -320,10 +320,15 @@ pub fn check_surface_partials<S: Surface>(surface: &S, n: usize) -> Result<(), L
 }
 
 /// Checks `Surface::normal` on an `n × n` grid: unit length, perpendicular
-/// to both partials, and along `∂S/∂u × ∂S/∂v` where that is not tiny
-/// (`n` and the domain as for [`check_surface_partials`]).
+/// to both partials, and along `∂S/∂u × ∂S/∂v` where that is not tiny, or
+/// along its negation at every such point (a surface of reversed
+/// orientation; the first such point decides which) (`n` and the domain as
+/// for [`check_surface_partials`]).
 pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), LawViolation> {
     checked_domain(surface)?;
+    // +1 along ∂S/∂u × ∂S/∂v, −1 against it: set by the first point where
+    // the cross product is clear, then held at every other.
+    let mut orientation = 0.0_f64;
     for (u, v) in grid(surface, n) {
         let (su, sv) = surface.partials(u, v);
         let cross = su.cross(&sv);
@@ -363,10 +368,13 @@ pub fn check_surface_normals<S: Surface>(surface: &S, n: usize) -> Result<(), La
         }
         let c = cross.norm();
         if c > 1e-6 * su.norm() * sv.norm() {
-            let error = (cross / c - normal.into_inner()).norm();
+            if orientation == 0.0 {
+                orientation = if cross.dot(&normal) < 0.0 { -1.0 } else { 1.0 };
+            }
+            let error = (cross * (orientation / c) - normal.into_inner()).norm();
             if exceeds(error, 1e-9) {
                 return Err(LawViolation {
-                    law: "normal along ∂S/∂u × ∂S/∂v",
+                    law: "normal along ±∂S/∂u × ∂S/∂v, one sign throughout",
                     at: vec![u, v],
                     error,
                     limit: 1e-9,

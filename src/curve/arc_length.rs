@@ -26,6 +26,20 @@ const MAX_DEPTH: u32 = 40;
 /// 0.1 s for a degree-28 rational curve with wild weights.
 const MAX_PIECES: usize = 1 << 13;
 
+/// Most halvings of one span's pieces made only to tighten a bracket (the
+/// estimate having converged). Pieces whose bracket a halving cannot
+/// tighten, as where the rounding of a high-degree span's coefficients
+/// outweighs the quadrature's remainder, are then accepted as they are
+/// instead of being halved up to the piece limit.
+const MAX_TIGHTENINGS: usize = 1024;
+
+/// The work allowed for one span's certificates, in evaluations of a
+/// coefficient (a certificate of a degree-`n` span samples it at up to
+/// `4n − 3` points, each `(n + 1)²` such evaluations): about 10 ms. Later
+/// pieces keep their chords and polygons. Only wild spans (high degree, a
+/// speed that nearly vanishes, thousands of pieces) reach it.
+const MAX_CERTIFICATE_WORK: usize = 1 << 24;
+
 /// Tolerances below this multiple of the length scale (the control
 /// polygon's length, or the sampled chords') are refused: the sums' own
 /// rounding is a few `1e-15` of the length.
@@ -51,7 +65,8 @@ const FALLBACK_PIECES: usize = 16;
 /// the tolerance, `G_l + G_r` lies between the piece's chord and polygon,
 /// and the piece's rigorous bracket (below) is within twice that share;
 /// otherwise each half is treated the same way (at most 40 levels deep, at
-/// most 2¹³ pieces in all). The speed `|C′(s)|` is evaluated from the span's
+/// most 2¹³ pieces in all, at most 1 024 halvings a span made for the bracket
+/// alone, and certificates worth about 10 ms a span). The speed `|C′(s)|` is evaluated from the span's
 /// own homogeneous coefficients (de Casteljau and the quotient rule), so
 /// its rounding does not grow with the depth. Comparing a rule with itself
 /// on the halves (rather than with a lower-order rule at nearly the same
@@ -198,6 +213,11 @@ trait Source<const D: usize> {
     fn vertex_rounding(&self) -> f64 {
         0.0
     }
+    /// The work of one [`Source::bracket`] of two parts (see
+    /// [`MAX_CERTIFICATE_WORK`]).
+    fn certificate_work(&self) -> usize {
+        0
+    }
 
     /// Whether [`Source::bracket`] can certify pieces: where it can, a
     /// piece is accepted only once its bracket is within its share of the
@@ -274,6 +294,11 @@ impl<const D: usize> Source<D> for SpanSource<D> {
     /// speed's rounding bound of its exact place.
     fn vertex_rounding(&self) -> f64 {
         2.0 * self.rounding
+    }
+
+    fn certificate_work(&self) -> usize {
+        let n = self.coeffs.len();
+        2 * 4 * n * n * n
     }
 
     /// Each part's value within its certified Gauss–Legendre remainder
@@ -358,6 +383,11 @@ struct Tally {
     lower: f64,
     upper: f64,
     pieces: usize,
+    /// Halvings made to tighten a bracket on the current span.
+    tightenings: usize,
+    /// The work of the brackets certified on the current span (see
+    /// [`MAX_CERTIFICATE_WORK`]).
+    certificate_work: usize,
 }
 
 impl Tally {
@@ -423,8 +453,12 @@ impl<S> Adaptive<'_, S> {
         // The piece's bracket: chord and polygon, tightened where the
         // quadrature's error is certified; tight when within the piece's
         // share of the tolerance (or when nothing can be certified).
-        let bracket = |parts: &[((f64, f64), f64)]| {
-            let certified = self.source.bracket(parts);
+        let bracket = |parts: &[((f64, f64), f64)], certify: bool| {
+            let certified = if certify {
+                self.source.bracket(parts)
+            } else {
+                None
+            };
             let tight = !S::CERTIFIES
                 || polygon - chord <= 2.0 * allowed
                 || certified.is_some_and(|c| c.quadrature <= allowed);
@@ -441,7 +475,7 @@ impl<S> Adaptive<'_, S> {
         };
         if mid <= s0 || mid >= s1 {
             // Too narrow to halve: accept the piece as it is.
-            let (lo, hi, _) = bracket(&[((s0, s1), whole)]);
+            let (lo, hi, _) = bracket(&[((s0, s1), whole)], true);
             tally.accept(whole, 0.0, lo, hi);
             return Ok(());
         }
@@ -453,11 +487,19 @@ impl<S> Adaptive<'_, S> {
         let converged = difference <= allowed && bracketed;
         let exhausted = depth >= MAX_DEPTH || tally.pieces >= MAX_PIECES;
         if converged || exhausted {
-            let (lo, hi, tight) = bracket(&[((s0, mid), left), ((mid, s1), right)]);
-            if tight || exhausted {
+            // Past the piece limits a certificate is not worth its cost
+            // (the bound is already out of reach).
+            let certify =
+                tally.pieces < MAX_PIECES && tally.certificate_work < MAX_CERTIFICATE_WORK;
+            if certify {
+                tally.certificate_work += self.source.certificate_work();
+            }
+            let (lo, hi, tight) = bracket(&[((s0, mid), left), ((mid, s1), right)], certify);
+            if tight || exhausted || tally.tightenings >= MAX_TIGHTENINGS {
                 tally.accept(halves, difference, lo, hi);
                 return Ok(());
             }
+            tally.tightenings += 1;
         }
         let pm = self.source.point(mid)?;
         self.run((s0, mid), (p0, pm), left, depth + 1, tally)?;
@@ -580,6 +622,7 @@ fn spans_length_at_scale<const D: usize>(
             allowed: &allowed,
         };
         let ends = (source.point(0.0)?, source.point(1.0)?);
+        (tally.tightenings, tally.certificate_work) = (0, 0);
         adaptive.start((0.0, 1.0), ends, &mut tally)?;
     }
     let evaluation = rounding + SUM_ROUNDING * tally.length();

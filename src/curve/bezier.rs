@@ -108,6 +108,27 @@ impl<const D: usize> Bezier<D> {
         self.points.len() - 1
     }
 
+    /// The same curve traced backward: `P_rev(t) = P(1 − t)` on `[0, 1]`,
+    /// the control points in reverse order (exact: no arithmetic), so
+    /// `P_rev⁽ᵏ⁾(t) = (−1)ᵏ P⁽ᵏ⁾(1 − t)` and `reversed().reversed()` is the
+    /// original.
+    ///
+    /// ```
+    /// use revolve::{Bezier, Curve};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 2.0), Point2::new(3.0, 0.0)])?;
+    /// let back = c.reversed();
+    /// assert_eq!(back.points()[0], Point2::new(3.0, 0.0));
+    /// assert_eq!(back.eval(0.25), c.eval(0.75));
+    /// assert_eq!(back.derivative(0.0), -c.derivative(1.0));
+    /// assert_eq!(back.reversed(), c);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn reversed(&self) -> Self {
+        Self::from_valid_points(self.points.iter().rev().copied().collect())
+    }
+
     /// The `order`-th derivative `dᵏP/dtᵏ` at `t` (order 0 is the point as a
     /// vector). Orders above the degree give the zero vector.
     ///

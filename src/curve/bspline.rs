@@ -164,6 +164,47 @@ impl<const D: usize> BSpline<D> {
         point_bounds(&self.points)
     }
 
+    /// The same curve traced backward on the same domain `[a, b]`:
+    /// `C_rev(t) = C(a + b − t)`, so `C_rev⁽ᵏ⁾(t) = (−1)ᵏ C⁽ᵏ⁾(a + b − t)`.
+    /// The control points are reversed and the knots mirrored,
+    /// `tᵢ ↦ a + b − t_{n+p−i}`; the Bézier pieces are rebuilt from them.
+    ///
+    /// # Edge rules
+    /// - The domain's ends are exactly `a` and `b` again.
+    /// - Mirrored knots are rounded: where that brings two distinct knots
+    ///   together (or closer than the gap rule of [`new`](Self::new)), the
+    ///   one that is not a domain end is moved apart by that gap (a few
+    ///   ulps), so multiplicities are kept and the result is always valid;
+    ///   the curve moves by that much times its speed. An outer knot whose
+    ///   mirror image would exceed [`MAX_COORDINATE`](crate::MAX_COORDINATE)
+    ///   is clamped to it.
+    /// - Spans stay half-open `[tᵢ, tᵢ₊₁)`, so at a knot of full
+    ///   multiplicity (a jump) the reversed curve takes the original's limit
+    ///   from the left.
+    /// - `reversed().reversed()` has the original's control points and
+    ///   degree, and its knots to rounding.
+    ///
+    /// ```
+    /// use revolve::{BSpline, Curve};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// let pts = vec![Point2::new(0.0, 0.0), Point2::new(1.0, 2.0), Point2::new(3.0, 2.0), Point2::new(4.0, 0.0), Point2::new(5.0, 1.0)];
+    /// let curve = BSpline::uniform(3, pts)?;
+    /// let back = curve.reversed();
+    /// let (a, b) = curve.domain();
+    /// assert_eq!(back.domain(), (a, b));
+    /// assert_eq!(back.eval(a), curve.eval(b));
+    /// let t = a + 0.3 * (b - a);
+    /// assert!((back.eval(t) - curve.eval(a + b - t)).norm() < 1e-14);
+    /// assert!((back.derivative(t) + curve.derivative(a + b - t)).norm() < 1e-12);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn reversed(&self) -> Self {
+        let knots = knots::reflected_knots(&self.knots, self.degree, self.points.len());
+        let points = self.points.iter().rev().copied().collect();
+        Self::from_valid_parts(self.degree, knots, points)
+    }
+
     /// The index `i` of the knot span `[tᵢ, tᵢ₊₁)` containing `t`, with
     /// `p ≤ i < n` and `tᵢ < tᵢ₊₁`. `t` is first moved into the domain; the
     /// domain end belongs to the last non-empty span. The search runs over

@@ -42,9 +42,15 @@ fn nodes(x: &mut [f64]) {
 
 /// `h` and `w` at the points `x` of the piece `[s₀, s₁]` (in the piece's
 /// own parameter) of the span `coeffs`, into `h` and `w`, and bounds on
-/// each sample's rounding. The bounds are generous: de Casteljau errs by
-/// `(n + 1)ε` of the coefficients' magnitude, `A′` and `w′` are at most `2n`
-/// times them, and `N` sums two such products.
+/// each sample's rounding.
+///
+/// The bounds are local, so that a part of the span where the weight or the
+/// speed is small is not charged the rounding of the span's largest
+/// coefficients: de Casteljau's value errs by at most `(n + 1)ε·Σ|cᵢ|Bᵢⁿ(s)`
+/// and its derivative by `(n + 1)ε·n·Σ(|cᵢ| + |cᵢ₊₁|)Bᵢⁿ⁻¹(s)` (each level a
+/// convex combination, one rounding a step), with `|cᵢ|` the coefficients'
+/// norms, evaluated the same way (their own rounding is second order and
+/// covered by the factor 4 below); `N = w·A′ − w′·A` adds its products'.
 fn sample<const D: usize>(
     coeffs: &[Homogeneous<D>],
     (s0, s1): (f64, f64),
@@ -52,24 +58,56 @@ fn sample<const D: usize>(
     h: &mut [f64],
     w: &mut [f64],
 ) -> (f64, f64) {
-    let n = (coeffs.len() - 1) as f64;
-    let big_w = coeffs.iter().fold(0.0_f64, |a, c| a.max(c.w.abs()));
-    let big_p = coeffs.iter().fold(0.0_f64, |a, c| a.max(c.wp.norm()));
+    let n = coeffs.len() - 1;
     let width = s1 - s0;
-    let n_rounding = 16.0 * n * (n + 2.0) * f64::EPSILON * big_w * big_p * width;
+    let unit = 4.0 * (n + 1) as f64 * f64::EPSILON;
     let mut h_rounding = 0.0_f64;
-    for ((&xj, hj), wj) in x.iter().zip(h.iter_mut()).zip(w.iter_mut()) {
-        let s = s0 + 0.5 * (1.0 + xj) * width;
-        let (value, slope) = bernstein::eval_with_derivative(coeffs, s)
-            .unwrap_or((Homogeneous::zero(), Homogeneous::zero()));
-        // N in the piece's parameter: the chain rule's factor `width`.
-        let big_n = (slope.wp * value.w - value.wp * slope.w) * width;
-        *hj = big_n.norm_squared();
-        *wj = value.w;
-        h_rounding = h_rounding
-            .max((2.0 * big_n.norm() + n_rounding) * n_rounding + 4.0 * f64::EPSILON * *hj);
-    }
-    (h_rounding, 4.0 * (n + 2.0) * f64::EPSILON * big_w)
+    let mut w_rounding = 0.0_f64;
+    // The coefficients' magnitudes `(|wᵢPᵢ|, |wᵢ|)` and their neighbours'
+    // sums, as homogeneous values so that one evaluation gives both.
+    let sizes = |c: &Homogeneous<D>| (c.wp.norm(), c.w.abs());
+    with_scratch(2 * n + 1, Homogeneous::<1>::zero(), |buf| {
+        let (values, pairs) = buf.split_at_mut(n + 1);
+        for (v, c) in values.iter_mut().zip(coeffs) {
+            let (p, q) = sizes(c);
+            *v = Homogeneous::new(&nalgebra::Point1::new(p), 1.0);
+            v.w = q;
+        }
+        for (i, pair) in pairs.iter_mut().enumerate() {
+            let (p0, q0) = sizes(&coeffs[i]);
+            let (p1, q1) = sizes(&coeffs[i + 1]);
+            *pair = Homogeneous::new(&nalgebra::Point1::new(p0 + p1), 1.0);
+            pair.w = q0 + q1;
+        }
+        for ((&xj, hj), wj) in x.iter().zip(h.iter_mut()).zip(w.iter_mut()) {
+            let s = s0 + 0.5 * (1.0 + xj) * width;
+            let (value, slope) = bernstein::eval_with_derivative(coeffs, s)
+                .unwrap_or((Homogeneous::zero(), Homogeneous::zero()));
+            let size = bernstein::eval(values, s).unwrap_or_else(Homogeneous::zero);
+            let slope_size = bernstein::eval(pairs, s).unwrap_or_else(Homogeneous::zero);
+            // Value and derivative errors of A and w at s.
+            let (ea, ew) = (unit * size.wp[0], unit * size.w);
+            let (ea1, ew1) = (
+                unit * n as f64 * slope_size.wp[0],
+                unit * n as f64 * slope_size.w,
+            );
+            // N in the piece's parameter: the chain rule's factor `width`.
+            let big_n = (slope.wp * value.w - value.wp * slope.w) * width;
+            let terms = slope.wp.norm() * value.w.abs() + value.wp.norm() * slope.w.abs();
+            let n_rounding = (value.w.abs() * ea1
+                + (slope.wp.norm() + ea1) * ew
+                + slope.w.abs() * ea
+                + (value.wp.norm() + ea) * ew1
+                + 4.0 * f64::EPSILON * terms)
+                * width;
+            *hj = big_n.norm_squared();
+            *wj = value.w;
+            h_rounding = h_rounding
+                .max((2.0 * big_n.norm() + n_rounding) * n_rounding + 4.0 * f64::EPSILON * *hj);
+            w_rounding = w_rounding.max(ew);
+        }
+    });
+    (h_rounding, w_rounding)
 }
 
 /// Into `c`, the Chebyshev coefficients `c₀ … c_deg` (`deg < m`) of the

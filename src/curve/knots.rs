@@ -126,6 +126,109 @@ pub(crate) fn validate_knots(degree: usize, knots: &[f64], n: usize) -> Result<(
     Ok(())
 }
 
+/// The knot vector of the same spline traced backward, `C(a + b − t)` on
+/// the same domain `[a, b]`: each knot mirrored, `t ↦ a + b − t`, in reverse
+/// order (the control values are reversed with them).
+///
+/// # Edge rules
+/// - The domain's ends map onto each other exactly (`a ↦ b`, `b ↦ a`), and
+///   a knot inside the domain stays inside it (rounding is clamped there).
+/// - `a + b − t` is rounded, which keeps the order but can bring two
+///   distinct knots together (a knot an ulp from its neighbour, where the
+///   mirrored values fall in a coarser binade) or within the gap rule of
+///   [`validate_knots`]. Such a knot is moved apart from its neighbour to
+///   the rule's gap (a few ulps), never onto it: multiplicities are kept,
+///   and the result is always a valid knot vector.
+/// - An outer knot whose mirror image would exceed
+///   [`MAX_COORDINATE`] is clamped to it (only for knot vectors spanning
+///   more than about `10¹⁰⁰`).
+pub(crate) fn reflected_knots(knots: &[f64], degree: usize, n: usize) -> Vec<f64> {
+    let (a, b) = domain(knots, degree, n);
+    let sum = a + b;
+    let mirror = |k: f64| {
+        let r = sum - k;
+        let r = if k == a {
+            b
+        } else if k == b {
+            a
+        } else if k < a {
+            r.max(b)
+        } else if k > b {
+            r.min(a)
+        } else {
+            r.clamp(a, b)
+        };
+        r.clamp(-MAX_COORDINATE, MAX_COORDINATE)
+    };
+    // One entry per run of equal knots, last run first: the mirrored value,
+    // the multiplicity, and whether it is an end of the domain (kept).
+    let mut runs: Vec<(f64, usize, bool)> = knots
+        .chunk_by(|x, y| x == y)
+        .rev()
+        .map(|run| (mirror(run[0]), run.len(), run[0] == a || run[0] == b))
+        .collect();
+    separate_runs(&mut runs);
+    runs.iter()
+        .flat_map(|&(value, count, _)| std::iter::repeat_n(value, count))
+        .collect()
+}
+
+/// Moves the values of `runs` (non-decreasing, each `(value, multiplicity,
+/// fixed)`) that are not `fixed` so that consecutive values differ by at
+/// least the gap rule of [`validate_knots`] (with a margin of `2⁻¹⁰`, so
+/// that the ends' own moves cannot make it bite): first up from below, then
+/// down from above. Each move is a few ulps, and a valid knot vector has
+/// room for them many times over (the passes could run out of room only
+/// with about `1/(8ε)` distinct knots), so the values stay increasing and
+/// the fixed ones in place.
+fn separate_runs(runs: &mut [(f64, usize, bool)]) {
+    let last = runs.len() - 1;
+    let gap = 4.0 * f64::EPSILON * (runs[last].0 - runs[0].0) * (1.0 + 1.0 / 1024.0);
+    let apart = |lo: f64, hi: f64| hi - lo >= gap;
+    for j in 1..=last {
+        let lo = runs[j - 1].0;
+        let (hi, _, fixed) = runs[j];
+        if !fixed && !apart(lo, hi) {
+            let mut x = hi.max(lo + gap);
+            for _ in 0..64 {
+                if apart(lo, x) {
+                    break;
+                }
+                x = next_float(x, 1.0);
+            }
+            runs[j].0 = x.min(MAX_COORDINATE);
+        }
+    }
+    for j in (0..last).rev() {
+        let hi = runs[j + 1].0;
+        let (lo, _, fixed) = runs[j];
+        if !fixed && !apart(lo, hi) {
+            let mut x = lo.min(hi - gap);
+            for _ in 0..64 {
+                if apart(x, hi) {
+                    break;
+                }
+                x = next_float(x, -1.0);
+            }
+            runs[j].0 = x.max(-MAX_COORDINATE);
+        }
+    }
+}
+
+/// The next float after the finite `x` toward `+∞` (`direction > 0`) or
+/// `−∞` (`f64::next_up` needs a newer Rust than the crate's minimum).
+fn next_float(x: f64, direction: f64) -> f64 {
+    if x == 0.0 {
+        return f64::from_bits(1).copysign(direction);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if (x > 0.0) == (direction > 0.0) {
+        bits + 1
+    } else {
+        bits - 1
+    })
+}
+
 /// The blossom `f(a, …, a, b, …, b)` (`count_a` copies of `a`, the rest `b`)
 /// of the polynomial on knot span `span`, whose `p + 1` control values
 /// (global indices `span − p … span`) are `control`: de Boor's algorithm with

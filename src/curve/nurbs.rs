@@ -240,6 +240,21 @@ impl<const D: usize> Nurbs<D> {
         self.bounds
     }
 
+    /// The same curve traced backward on the same domain `[a, b]`:
+    /// `C_rev(t) = C(a + b − t)`, so `C_rev⁽ᵏ⁾(t) = (−1)ᵏ C⁽ᵏ⁾(a + b − t)`.
+    /// The control points and weights are reversed and the knots mirrored,
+    /// `tᵢ ↦ a + b − t_{n+p−i}`, with the edge rules of
+    /// [`BSpline::reversed`] (ends exact, knots that rounding brings
+    /// together kept apart, the limit from the left at a jump); the pieces
+    /// are rebuilt. `reversed().reversed()` has the original's points and
+    /// weights, and its knots to rounding.
+    pub fn reversed(&self) -> Self {
+        let knots = knots::reflected_knots(&self.knots, self.degree, self.points.len());
+        let points = self.points.iter().rev().copied().collect();
+        let weights = self.weights.iter().rev().copied().collect();
+        Self::from_valid_parts(self.degree, knots, points, weights)
+    }
+
     /// The derivatives `C, C′, …, C⁽ᵏ⁾` at `t`, `k = out.len() − 1`.
     ///
     /// The homogeneous derivatives `(A⁽ʲ⁾, w⁽ʲ⁾)` come from de Boor's

@@ -194,6 +194,16 @@ impl<const D: usize> RationalBezier<D> {
         self.points.len() - 1
     }
 
+    /// The same curve traced backward: `P_rev(t) = P(1 − t)` on `[0, 1]`,
+    /// the control points and weights in reverse order (exact), so
+    /// `P_rev⁽ᵏ⁾(t) = (−1)ᵏ P⁽ᵏ⁾(1 − t)` and `reversed().reversed()` is the
+    /// original.
+    pub fn reversed(&self) -> Self {
+        let points = self.points.iter().rev().copied().collect();
+        let weights = self.weights.iter().rev().copied().collect();
+        Self::from_valid_parts(points, weights)
+    }
+
     /// Whether all weights are equal: the curve is then the polynomial
     /// [`Bezier`] of its points.
     pub fn is_polynomial(&self) -> bool {

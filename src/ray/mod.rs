@@ -158,6 +158,107 @@ pub trait Intersect {
             *hit = self.intersect(ray, t_min, t_max);
         }
     }
+
+    /// Every hit with `t_min < t < t_max`, in increasing `t`, into `hits`
+    /// (cleared first), with [`intersect`](Self::intersect)'s guarantees:
+    /// no transversal crossing missed, none false, a tangential double root
+    /// once. `hits.first()` is what `intersect(ray, t_min, t_max)` returns.
+    ///
+    /// The default walks the ray as secondary rays do
+    /// ([`walk_hits`](crate::ray::walk_hits)): `intersect(ray, tₖ, t_max)`
+    /// from each hit `tₖ` gives the next, since a hit within the
+    /// intersector's position uncertainty past `t_min` counts as the ray's
+    /// own origin. A near-tangent root may be found once more just past
+    /// itself; a hit whose distance from the surface could not have changed
+    /// since the previous one (`Δt·|d·n|` within twice the acceptance, see
+    /// [`walk_hits`](crate::ray::walk_hits)) is that root again and is
+    /// passed over. No allocation beyond `hits` growing.
+    ///
+    /// ```
+    /// use revolve::{Bezier, Intersect, Ray, Revolution};
+    /// use revolve::nalgebra::{Point2, Point3, Vector3};
+    ///
+    /// // A cylinder of radius 1: a ray across it crosses the wall twice.
+    /// let cylinder = Revolution::new(Bezier::new(vec![
+    ///     Point2::new(1.0, 0.0), Point2::new(1.0, 2.0)])?);
+    /// let ray = Ray::new(Point3::new(-3.0, 1.0, 0.0), Vector3::x());
+    /// let mut hits = Vec::new();
+    /// cylinder.intersect_all(&ray, 0.0, f64::INFINITY, &mut hits);
+    /// assert_eq!(hits.len(), 2);
+    /// assert!((hits[0].t - 2.0).abs() < 1e-14 && (hits[1].t - 4.0).abs() < 1e-14);
+    /// assert_eq!(hits.first().copied(), cylinder.intersect(&ray, 0.0, f64::INFINITY));
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    fn intersect_all(&self, ray: &Ray, t_min: f64, t_max: f64, hits: &mut Vec<Hit>) {
+        let scale = self.bounds().scale().max(ray.origin.coords.amax());
+        walk_hits(
+            |from| self.intersect(ray, from, t_max),
+            ray,
+            t_min,
+            acceptance::Acceptance::ROUNDING * scale,
+            hits,
+        );
+    }
+
+    /// Whether anything lies on the ray with `t_min < t < t_max`: exactly
+    /// `intersect(ray, t_min, t_max).is_some()` (a shadow ray's question).
+    /// An implementor may stop at the first certified root it finds rather
+    /// than the nearest; the default asks [`intersect`](Self::intersect).
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.intersect(ray, t_min, t_max).is_some()
+    }
+}
+
+/// Consecutive finds of one root that [`walk_hits`] passes over before it
+/// stops: only a ray lying in the surface (every point a root) comes near.
+const MAX_REPEATS: usize = 8;
+
+/// The walk behind [`Intersect::intersect_all`]: `next(from)` is the
+/// nearest hit past `from` (an intersector's `intersect(ray, from, t_max)`),
+/// called from `t_min` and then from each hit, into `hits` (cleared first).
+///
+/// A hit `h′` after `h` is the same root found again when the ray crosses
+/// the surface the same way at both (`d·n·d·n′ ≥ 0`) and
+/// `(t′ − t)·max(|d·n|, |d·n′|) ≤ 2·accept`: both ray points lie within
+/// `accept` (the intersector's acceptance distance) of the surface, and the
+/// ray's distance from a surface of normal `n` changes by `Δt·|d·n|`
+/// between them, so nothing beyond the acceptance separates them. (The two
+/// roots of a ray grazing a surface, however close, cross it opposite ways
+/// and are both kept.) Such a repeat is passed over and the walk goes on
+/// from it; after [`MAX_REPEATS`] in a row (a ray lying in the surface) it
+/// stops. A `t` that does not increase (an
+/// intersector breaking its contract) stops it too, so it always ends.
+pub fn walk_hits(
+    mut next: impl FnMut(f64) -> Option<Hit>,
+    ray: &Ray,
+    t_min: f64,
+    accept: f64,
+    hits: &mut Vec<Hit>,
+) {
+    hits.clear();
+    let mut from = t_min;
+    let mut repeats = 0;
+    while let Some(hit) = next(from) {
+        // NaN-safe: a t that is NaN or not past `from` ends the walk.
+        let advances = hit.t > from;
+        if !advances {
+            break;
+        }
+        from = hit.t;
+        let again = hits.last().is_some_and(|last: &Hit| {
+            let (a, b) = (ray.dir.dot(&last.normal), ray.dir.dot(&hit.normal));
+            a * b >= 0.0 && (hit.t - last.t) * a.abs().max(b.abs()) <= 2.0 * accept
+        });
+        if again {
+            repeats += 1;
+            if repeats >= MAX_REPEATS {
+                break;
+            }
+            continue;
+        }
+        repeats = 0;
+        hits.push(hit);
+    }
 }
 
 /// How accurately a solver works: an explicit setting, no hidden epsilon.

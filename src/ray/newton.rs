@@ -126,8 +126,8 @@
 //! # Ok::<(), revolve::Error>(())
 //! ```
 
-use super::SplitDirection;
 use super::acceptance::Acceptance;
+use super::{SplitDirection, walk_hits};
 use crate::surface::PatchBounds;
 use crate::{Aabb, Error, Hit, Intersect, Ray, Surface, Tolerance};
 use nalgebra::{Matrix3, Unit};
@@ -803,6 +803,21 @@ impl<S: PatchBounds> Intersect for NewtonIntersector<S> {
     /// nearest hit can be missed.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.search(ray, t_min, t_max, &mut NoRecord)
+    }
+
+    /// The walk of [`Intersect::intersect_all`], with this intersector's own
+    /// acceptance (looser than the certified intersectors'). Like
+    /// [`intersect`](Self::intersect), it can miss a hit near tangency or
+    /// one of two hits in one leaf.
+    fn intersect_all(&self, ray: &Ray, t_min: f64, t_max: f64, hits: &mut Vec<Hit>) {
+        let accept = self.limits().acceptance.distance;
+        walk_hits(
+            |from| self.intersect(ray, from, t_max),
+            ray,
+            t_min,
+            accept,
+            hits,
+        );
     }
 
     /// The root box of the patch tree: conservative, so it contains every

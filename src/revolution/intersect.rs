@@ -9,6 +9,7 @@ use super::span_search::ExactReport;
 use super::span_table::SpanTable;
 use super::surface::profile_normal;
 use crate::ray::acceptance::Acceptance;
+use crate::surface::oriented;
 use crate::{Aabb, Curve, Hit, Intersect, Ray, Revolution};
 use nalgebra::{Point3, Unit, Vector3};
 
@@ -44,26 +45,23 @@ impl<C: Curve<2>> Revolution<C> {
         report: &mut ExactReport,
     ) -> Option<Hit> {
         let exact = self.exact.as_ref()?;
-        let origin = &self.to_world.translation.vector;
-        let o = Point3::from(
-            self.rotation
-                .inverse_transform_vector(&(ray.origin.coords - origin)),
-        );
-        let d = self.rotation.inverse_transform_vector(&ray.dir);
+        let (o, d) = self.to_local(ray);
         let local = match self.approximation {
-            None => exact.intersect(o, d, t_min, t_max, &self.tolerance, report)?,
+            None => exact.intersect::<false>(o, d, t_min, t_max, &self.tolerance, report)?,
             Some(_) => self.refined_hit(exact, o, d, t_min, t_max, report)?,
         };
         report.residual = Some(local.residual);
         let at_end = local.u >= self.profile.domain().1;
         let finite = |n: &Unit<Vector3<f64>>| n.iter().all(|c| c.is_finite());
         let normal_local = match local.tangent {
-            Some(t) => profile_normal(local.x, t, at_end, local.sin_cos),
+            Some(t) => profile_normal(local.x, t, at_end, local.sin_cos)
+                .map(|n| oriented(n, self.reversed)),
             None => self.normal_local(local.u, local.theta),
         }
         .filter(finite)
         // No tangent plane (a cone's apex): face the ray.
         .or_else(|| Unit::try_new(-d / d.amax(), 0.0))?;
+        let origin = &self.to_world.translation.vector;
         let point = Point3::from(self.rotation * local.point.coords + origin);
         if !point.coords.iter().all(|c| c.is_finite()) {
             return None;
@@ -74,6 +72,16 @@ impl<C: Curve<2>> Revolution<C> {
             normal: Unit::new_unchecked(self.rotation * normal_local.into_inner()),
             uv: (local.u, local.theta),
         })
+    }
+
+    /// The ray's origin and direction in the profile's local frame.
+    fn to_local(&self, ray: &Ray) -> (Point3<f64>, Vector3<f64>) {
+        let origin = &self.to_world.translation.vector;
+        let o = Point3::from(
+            self.rotation
+                .inverse_transform_vector(&(ray.origin.coords - origin)),
+        );
+        (o, self.rotation.inverse_transform_vector(&ray.dir))
     }
 
     /// The nearest hit for a profile without Bézier spans: the hits of its
@@ -99,7 +107,7 @@ impl<C: Curve<2>> Revolution<C> {
         let t_floor = Acceptance::certified(&self.tolerance, scale, &o.coords).t_floor(t_min, dn);
         let mut from = t_min;
         for _ in 0..REFINE_TRIES {
-            let guess = table.intersect(o, d, from, t_max, &self.tolerance, report)?;
+            let guess = table.intersect::<false>(o, d, from, t_max, &self.tolerance, report)?;
             let refined = refine_on_profile(
                 &self.profile,
                 self.profile.domain(),
@@ -128,6 +136,21 @@ impl<C: Curve<2>> Intersect for Revolution<C> {
     /// is a zero, NaN or infinite direction.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.intersect_reporting(ray, t_min, t_max, &mut ExactReport::default())
+    }
+
+    /// For profiles with Bézier spans, the span search stops at the first
+    /// span with a hit instead of going on for a nearer one.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        match (&self.exact, self.approximation) {
+            (Some(exact), None) => {
+                let (o, d) = self.to_local(ray);
+                let mut report = ExactReport::default();
+                exact
+                    .intersect::<true>(o, d, t_min, t_max, &self.tolerance, &mut report)
+                    .is_some()
+            }
+            _ => self.intersect(ray, t_min, t_max).is_some(),
+        }
     }
 
     fn bounds(&self) -> Aabb {

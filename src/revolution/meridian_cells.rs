@@ -431,7 +431,9 @@ impl MeridianCells {
     /// `|d_y|/|d_xz| ≤ 7`) and `ρ₀²` by about `30 ε |o| R`: for
     /// `|o| ≤ ORIGIN_LIMIT · scale` that is far inside [`MARGIN`] (for `ρ₀`
     /// itself, the margin of `ρ₀²` is at least `MARGIN · scale² / 2R`).
-    #[inline]
+    // Inlined by force into both instantiations of the span search (left
+    // out of line, a ray took 2.5 % more instructions).
+    #[inline(always)]
     pub(super) fn classify(
         &self,
         o: Vector3<f64>,

@@ -440,8 +440,9 @@ mod tests {
                 let o = Point3::from(o);
                 let (mut report, mut report_full) =
                     (ExactReport::default(), ExactReport::default());
-                let got = table.intersect(o, d, 0.0, f64::INFINITY, &tol, &mut report);
-                let want = full.intersect(o, d, 0.0, f64::INFINITY, &tol, &mut report_full);
+                let got = table.intersect::<false>(o, d, 0.0, f64::INFINITY, &tol, &mut report);
+                let want =
+                    full.intersect::<false>(o, d, 0.0, f64::INFINITY, &tol, &mut report_full);
                 if report != report_full {
                     decided += 1;
                 }
@@ -582,8 +583,14 @@ mod tests {
                 if near_rim {
                     continue;
                 }
-                let got =
-                    table.intersect(o, d, 0.0, f64::INFINITY, &tol, &mut ExactReport::default());
+                let got = table.intersect::<false>(
+                    o,
+                    d,
+                    0.0,
+                    f64::INFINITY,
+                    &tol,
+                    &mut ExactReport::default(),
+                );
                 match (got, want) {
                     (None, None) => {}
                     (Some(g), Some(t)) => {

@@ -3,6 +3,7 @@
 use super::profile_approximation::approximate;
 use super::span_table::SpanTable;
 use crate::curve::RationalBezierSpan;
+use crate::surface::oriented;
 use crate::{Curve, Error, Surface, Tolerance};
 use nalgebra::{
     Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector2, Vector3,
@@ -22,7 +23,8 @@ use std::f64::consts::TAU;
 /// with `(x′, y′)` the profile's unit tangent. For a profile traced upward
 /// (increasing `y`) it points toward the axis, on either side of it (negative
 /// `x`, as course scene files write profiles, gives the same surface and
-/// orientation as positive `x`).
+/// orientation as positive `x`); [`reversed`](Self::reversed) turns every
+/// normal the other way.
 ///
 /// # Edge rules: the axis
 /// Where the profile meets the axis (`x = 0`) the cross product vanishes. The
@@ -102,6 +104,9 @@ pub struct Revolution<C> {
     /// the rotation, or the unit axis normalized again, may differ by an
     /// ulp; this one scales by exactly 1 again).
     pub(super) scaled_axis: Vector3<f64>,
+    /// The orientation is reversed ([`reversed`](Revolution::reversed)):
+    /// every normal is negated, nothing else changes.
+    pub(crate) reversed: bool,
 }
 /// The intersector's data for `profile`, and the deviation of the
 /// approximation it was built from if the profile has no Bézier spans;
@@ -201,6 +206,7 @@ impl<C: Curve<2>> Revolution<C> {
             broken,
             tolerance: Tolerance::default(),
             scaled_axis: Vector3::y(),
+            reversed: false,
         }
     }
 
@@ -248,6 +254,49 @@ impl<C: Curve<2>> Revolution<C> {
     pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
         self.tolerance = tolerance.clamped();
         self
+    }
+
+    /// The same surface with the opposite orientation: the unit normal
+    /// becomes `−(∂S/∂u × ∂S/∂θ)/|∂S/∂u × ∂S/∂θ|` (and its limits on the
+    /// axis are negated), while the points, the partials
+    /// [`partials`](Surface::partials) (unchanged, so no longer crossing to
+    /// the normal), the parameters and the hits' `t`, `point` and `uv` are
+    /// exactly the original's. Every normal is negated: [`Surface::normal`],
+    /// [`normal_local`](Self::normal_local), each [`Hit`](crate::Hit)'s
+    /// from [`Intersect`](crate::Intersect), and [`tessellate`](Self::tessellate)'s
+    /// vertex normals, whose triangles are wound the other way to match.
+    /// Where no tangent plane exists (a cone's apex) a hit's normal faces
+    /// the ray as before. `reversed().reversed()` is the original.
+    ///
+    /// A profile traced upward (increasing `y`) gives normals toward the
+    /// axis; reversing gives outward ones:
+    ///
+    /// ```
+    /// use revolve::{Intersect, Nurbs, Ray, Revolution, Surface};
+    /// use revolve::nalgebra::{Point2, Point3, Vector3};
+    /// use std::f64::consts::FRAC_PI_2;
+    ///
+    /// // The unit sphere from its south pole up to its north pole.
+    /// let inward = Revolution::new(Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2)?);
+    /// let sphere = inward.reversed();
+    /// let p = sphere.eval(0.3, 1.0);
+    /// assert!(sphere.normal(0.3, 1.0).unwrap().dot(&p.coords) > 0.999);
+    /// assert_eq!(sphere.normal(0.3, 1.0).map(|n| -n), inward.normal(0.3, 1.0));
+    /// let ray = Ray::new(Point3::new(0.0, 0.0, -3.0), Vector3::z());
+    /// let (a, b) = (sphere.intersect(&ray, 0.0, 9.0).unwrap(), inward.intersect(&ray, 0.0, 9.0).unwrap());
+    /// assert_eq!((a.t, a.point, a.uv), (b.t, b.point, b.uv));
+    /// assert_eq!(a.normal, -b.normal);
+    /// assert!((a.normal.into_inner() - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-15);
+    /// assert_eq!(sphere.reversed(), inward);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn reversed(&self) -> Self
+    where
+        C: Clone,
+    {
+        let mut surface = self.clone();
+        surface.reversed = !surface.reversed;
+        surface
     }
 
     /// Whether [`Intersect`](crate::Intersect) runs the exact intersector on the profile's own
@@ -389,7 +438,8 @@ impl<C: Curve<2>> Revolution<C> {
         )
     }
 
-    /// The unit normal in the local frame (see the type's edge rules).
+    /// The unit normal in the local frame (see the type's edge rules;
+    /// negated on a [reversed](Self::reversed) surface).
     pub fn normal_local(&self, u: f64, theta: f64) -> Option<Unit<Vector3<f64>>> {
         let x = self.profile.eval(u).x;
         let at_end = u >= self.profile.domain().1;
@@ -399,6 +449,7 @@ impl<C: Curve<2>> Revolution<C> {
             at_end,
             finite_angle(theta).sin_cos(),
         )
+        .map(|n| oriented(n, self.reversed))
     }
 }
 

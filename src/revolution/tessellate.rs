@@ -31,7 +31,9 @@ struct Plan {
 
 impl<C: Curve<2>> Revolution<C> {
     /// A triangle mesh within `tolerance` of the surface (see the module
-    /// docs for the bound, which the mesh reports in [`Mesh::bound`]).
+    /// docs for the bound, which the mesh reports in [`Mesh::bound`]). On a
+    /// [reversed](Self::reversed) surface the same mesh with its normals
+    /// negated and its triangles wound the other way.
     ///
     /// Vertices on the axis (poles) are shared by their ring; triangles that
     /// collapse there are left out. The seam `θ = 0 ≡ 2π` has duplicate
@@ -142,6 +144,9 @@ impl<C: Curve<2>> Revolution<C> {
                     mesh.triangles.push([b, c, d]);
                 }
             }
+        }
+        if self.reversed {
+            mesh.reverse_orientation(0..mesh.normals.len(), 0..mesh.triangles.len());
         }
         Ok(mesh)
     }

@@ -2,7 +2,7 @@
 //! intersected through a hierarchy over the patches' pieces.
 
 use super::patch::Patch;
-use super::search::intersect;
+use super::search::{intersect, occluded};
 use super::search_pieces::SearchPieces;
 use super::tessellate::tessellate_patches;
 use crate::bernstein::Coefficient;
@@ -90,6 +90,22 @@ impl BezierPatches {
         &self.surfaces
     }
 
+    /// The same model with the opposite orientation: every patch
+    /// [reversed](BezierSurface::reversed) (the flag is the patches', so
+    /// [`patches`](Self::patches) gives the reversed ones), its unit normal
+    /// `−(∂S/∂u × ∂S/∂v)/|∂S/∂u × ∂S/∂v|` while points, partials, hits' `t`,
+    /// `point`, `uv` and patch index are exactly the original's; the normals
+    /// of [`intersect_patch`](Self::intersect_patch), [`Intersect`] and
+    /// [`tessellate`](Self::tessellate) (its triangles wound the other way)
+    /// are negated. `reversed().reversed()` is the original.
+    pub fn reversed(&self) -> Self {
+        let mut model = self.clone();
+        for surface in &mut model.surfaces {
+            *surface = surface.reversed();
+        }
+        model
+    }
+
     /// The number of patches (at least one).
     pub fn len(&self) -> usize {
         self.surfaces.len()
@@ -118,13 +134,16 @@ impl BezierPatches {
     /// same control points (either direction, as the teapot's do) get the
     /// same vertices along it, welded, so the mesh is open only where the
     /// model is. A vertex on a shared edge keeps the `uv` and normal of the
-    /// first patch (in order) that has it.
+    /// first patch (in order) that has it. A [reversed](BezierSurface::reversed)
+    /// patch's normals are negated and its triangles wound the other way.
     ///
     /// # Errors
     /// As [`BezierSurface::tessellate`].
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
         let (degrees, nets) = raised_nets(&self.surfaces);
-        tessellate_patches(degrees, &nets, tolerance)
+        tessellate_patches(degrees, &nets, tolerance, |k| {
+            self.surfaces[k].is_reversed()
+        })
     }
 }
 
@@ -175,6 +194,11 @@ fn raise<T: Coefficient>(c: &[T], degree: usize) -> Vec<T> {
 impl Intersect for BezierPatches {
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.intersect_patch(ray, t_min, t_max).map(|(_, hit)| hit)
+    }
+
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        occluded(self.search.set(), ray, t_min, t_max, &self.tolerance)
     }
 
     fn bounds(&self) -> Aabb {

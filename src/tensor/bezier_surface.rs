@@ -20,7 +20,8 @@ use nalgebra::{Point3, Unit, Vector3};
 ///
 /// # Edge rules
 /// - Parameters outside `[0, 1]` evaluate at the nearest edge; NaN at 0.
-/// - [`normal`](crate::Surface::normal) is `∂S/∂u × ∂S/∂v` normalized. Where that
+/// - [`normal`](crate::Surface::normal) is `∂S/∂u × ∂S/∂v` normalized
+///   (negated on a [reversed](BezierSurface::reversed) surface). Where that
 ///   cross product is negligible (below `(10⁻⁷·D)²` for the typical first
 ///   derivative `D` = net extent × degree / parameter width; a *collapsed
 ///   edge*, all points of a row equal, as on the teapot's lid), the normal is
@@ -134,6 +135,47 @@ impl BezierSurface {
         &self.points
     }
 
+    /// The same surface with the opposite orientation: the unit normal
+    /// becomes `−(∂S/∂u × ∂S/∂v)/|∂S/∂u × ∂S/∂v|` (its limits at collapsed
+    /// edges negated too), while the control grid, the points, the
+    /// [`partials`](Surface::partials) (unchanged, so no longer crossing to
+    /// the normal), the parameters and the hits' `t`, `point` and `uv` are
+    /// exactly the original's. Every normal is negated: [`Surface::normal`],
+    /// each [`Hit`]'s from [`Intersect`], and [`tessellate`](Self::tessellate)'s
+    /// vertex normals, whose triangles are wound the other way to match.
+    /// Where no tangent plane exists a hit's normal faces the ray as before.
+    /// `reversed().reversed()` is the original.
+    ///
+    /// ```
+    /// use revolve::{BezierSurface, Intersect, Ray, Surface};
+    /// use revolve::nalgebra::{Point3, Vector3};
+    ///
+    /// // The unit square in z = 0, its normal +z.
+    /// let s = BezierSurface::new(vec![
+    ///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+    ///     vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 0.0)],
+    /// ])?;
+    /// let r = s.reversed();
+    /// assert_eq!(s.normal(0.5, 0.5).unwrap().into_inner(), Vector3::z());
+    /// assert_eq!(r.normal(0.5, 0.5).unwrap().into_inner(), -Vector3::z());
+    /// assert_eq!(r.partials(0.5, 0.5), s.partials(0.5, 0.5));
+    /// let ray = Ray::new(Point3::new(0.25, 0.5, 1.0), -Vector3::z());
+    /// let (a, b) = (s.intersect(&ray, 0.0, 9.0).unwrap(), r.intersect(&ray, 0.0, 9.0).unwrap());
+    /// assert_eq!((a.t, a.point, a.uv, -a.normal), (b.t, b.point, b.uv, b.normal));
+    /// assert_eq!(r.reversed(), s);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn reversed(&self) -> Self {
+        let mut surface = self.clone();
+        surface.table.reversed = !surface.table.reversed;
+        surface
+    }
+
+    /// Whether the orientation is [reversed](Self::reversed).
+    pub(crate) fn is_reversed(&self) -> bool {
+        self.table.reversed
+    }
+
     /// The degrees `(m, n) = (rows − 1, cols − 1)`.
     pub fn degrees(&self) -> (usize, usize) {
         self.table.degrees
@@ -167,7 +209,9 @@ impl BezierSurface {
     /// Magedson & Markot 1986; `M` from the net's second differences) is
     /// below the tolerance; see [`Mesh`] and the bound it reports in
     /// [`Mesh::bound`]. Normals are the surface's (the limit at collapsed
-    /// edges, where zero-area triangles are left out), `uvs` are `(u, v)`.
+    /// edges, where zero-area triangles are left out; negated, with the
+    /// triangles wound the other way, on a [reversed](Self::reversed)
+    /// surface), `uvs` are `(u, v)`.
     ///
     /// ```
     /// use revolve::BezierSurface;
@@ -196,7 +240,10 @@ impl BezierSurface {
     /// [`Mesh::MAX_VERTICES`] (its `min` is a tolerance that fits);
     /// [`Error::AllocationFailed`].
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
-        tessellate_patches(self.table.degrees, &self.table.patches, tolerance)
+        let reversed = self.table.reversed;
+        tessellate_patches(self.table.degrees, &self.table.patches, tolerance, |_| {
+            reversed
+        })
     }
 }
 
@@ -236,6 +283,11 @@ impl PatchBounds for BezierSurface {
 impl Intersect for BezierSurface {
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.table.hit(ray, t_min, t_max)
+    }
+
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.table.occluded(ray, t_min, t_max)
     }
 
     fn bounds(&self) -> Aabb {

@@ -132,6 +132,25 @@ impl BSplineSurface {
         &self.core.points
     }
 
+    /// The same surface with the opposite orientation: the unit normal
+    /// becomes `−(∂S/∂u × ∂S/∂v)/|∂S/∂u × ∂S/∂v|`, while the grid, knots,
+    /// points, [`partials`](Surface::partials) (unchanged), parameters and
+    /// hits' `t`, `point` and `uv` are exactly the original's; every normal
+    /// is negated as for [`BezierSurface::reversed`] (the tessellation's
+    /// triangles wound the other way), and [`to_bezier_patches`](Self::to_bezier_patches)
+    /// and knot insertion keep the orientation. `reversed().reversed()` is
+    /// the original.
+    pub fn reversed(&self) -> Self {
+        let mut surface = self.clone();
+        surface.core.table.reversed = !surface.core.table.reversed;
+        surface
+    }
+
+    /// Whether the orientation is [reversed](Self::reversed).
+    pub(crate) fn is_reversed(&self) -> bool {
+        self.core.table.reversed
+    }
+
     /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
     /// (clamped into the domain), analytic.
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
@@ -147,7 +166,7 @@ impl BSplineSurface {
     /// # Errors
     /// As [`BezierSurface::tessellate`].
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
-        tessellate_patches(self.core.table.degrees, &self.core.table.patches, tolerance)
+        self.core.tessellate(tolerance)
     }
 
     /// The Bézier patches, one per non-empty knot rectangle of the domain,
@@ -159,10 +178,15 @@ impl BSplineSurface {
             .iter()
             .map(|patch| {
                 let (points, _) = self.core.patch_grid(patch);
+                let surface = BezierSurface::from_valid_parts(points);
                 BezierPatch {
                     u: patch.u,
                     v: patch.v,
-                    surface: BezierSurface::from_valid_parts(points),
+                    surface: if self.core.table.reversed {
+                        surface.reversed()
+                    } else {
+                        surface
+                    },
                 }
             })
             .collect()
@@ -254,6 +278,11 @@ impl PatchBounds for BSplineSurface {
 impl Intersect for BSplineSurface {
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.core.table.hit(ray, t_min, t_max)
+    }
+
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.core.table.occluded(ray, t_min, t_max)
     }
 
     fn bounds(&self) -> Aabb {
@@ -452,7 +481,19 @@ impl TensorSpline {
         } else {
             (self.knots.0.clone(), knots)
         };
-        Self::from_checked_parts(self.degrees, all_knots, points, weights, rational)
+        let mut spline =
+            Self::from_checked_parts(self.degrees, all_knots, points, weights, rational)?;
+        spline.table.reversed = self.table.reversed;
+        Ok(spline)
+    }
+
+    /// The surface's mesh (see [`BSplineSurface::tessellate`]), turned the
+    /// other way round when the orientation is reversed.
+    pub(crate) fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
+        let reversed = self.table.reversed;
+        tessellate_patches(self.table.degrees, &self.table.patches, tolerance, |_| {
+            reversed
+        })
     }
 }
 

@@ -2,7 +2,6 @@
 
 use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
-use super::tessellate::tessellate_patches;
 use crate::Mesh;
 use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -123,6 +122,27 @@ impl NurbsSurface {
         &self.core.points
     }
 
+    /// The same surface with the opposite orientation: the unit normal
+    /// becomes `−(∂S/∂u × ∂S/∂v)/|∂S/∂u × ∂S/∂v|`, while the grid, weights,
+    /// knots, points, [`partials`](Surface::partials) (unchanged), parameters
+    /// and hits' `t`, `point` and `uv` are exactly the original's; every
+    /// normal is negated as for
+    /// [`BezierSurface::reversed`](crate::BezierSurface::reversed) (the
+    /// tessellation's triangles wound the other way), and knot insertion
+    /// keeps the orientation (the plain data of
+    /// [`to_bezier_patches`](Self::to_bezier_patches) has none).
+    /// `reversed().reversed()` is the original.
+    pub fn reversed(&self) -> Self {
+        let mut surface = self.clone();
+        surface.core.table.reversed = !surface.core.table.reversed;
+        surface
+    }
+
+    /// Whether the orientation is [reversed](Self::reversed).
+    pub(crate) fn is_reversed(&self) -> bool {
+        self.core.table.reversed
+    }
+
     /// The weights, as given (all ones for a converted [`BSplineSurface`]);
     /// weights that all lie below `2⁻⁵⁰⁰` or above `2⁵⁰⁰` are scaled by one
     /// power of two at construction (exactly, the surface unchanged) so that
@@ -170,7 +190,7 @@ impl NurbsSurface {
     /// # Errors
     /// As [`BezierSurface::tessellate`](crate::BezierSurface::tessellate).
     pub fn tessellate(&self, tolerance: f64) -> Result<Mesh, Error> {
-        tessellate_patches(self.core.table.degrees, &self.core.table.patches, tolerance)
+        self.core.tessellate(tolerance)
     }
 
     /// The same surface with the knot `t` inserted `times` times into `U`
@@ -242,6 +262,11 @@ impl PatchBounds for NurbsSurface {
 impl Intersect for NurbsSurface {
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         self.core.table.hit(ray, t_min, t_max)
+    }
+
+    /// Stops at the first patch piece with a hit.
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.core.table.occluded(ray, t_min, t_max)
     }
 
     fn bounds(&self) -> Aabb {

@@ -4,10 +4,11 @@
 //! ray search (its pieces built by the first ray).
 
 use super::patch::{Jet, Patch, first_jet, project_jet, rounding_pad, tensor_jet};
-use super::search::{PatchSet, intersect};
+use super::search::{PatchSet, intersect, occluded};
 use super::search_pieces::SearchPieces;
 use crate::bernstein::restrict;
 use crate::curve::{Homogeneous, power_of_two_near, unit_direction};
+use crate::surface::oriented;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
 use std::sync::OnceLock;
@@ -40,6 +41,9 @@ pub(crate) struct PatchTable {
     search: OnceLock<SearchPieces>,
     /// The intersection accuracy.
     pub(crate) tolerance: Tolerance,
+    /// The orientation is reversed (the surface kinds' `reversed()`): the
+    /// normals are negated, nothing else changes.
+    pub(crate) reversed: bool,
 }
 /// The index `k` of the span `[breaks[k], breaks[k + 1])` holding `x`
 /// (clamped into the breakpoints; the last breakpoint belongs to the last
@@ -58,6 +62,7 @@ impl PartialEq for PatchTable {
             && self.v_breaks == other.v_breaks
             && self.patches == other.patches
             && self.tolerance == other.tolerance
+            && self.reversed == other.reversed
     }
 }
 impl PatchTable {
@@ -81,6 +86,7 @@ impl PatchTable {
             bounds: b.expand(rounding_pad(scale)),
             search: OnceLock::new(),
             tolerance: Tolerance::default(),
+            reversed: false,
         }
     }
 
@@ -140,12 +146,18 @@ impl PatchTable {
 
     /// The nearest hit of `ray` with `t_min < t < t_max` (see
     /// [`crate::ray::patch`]): the point is `S(u, v)`, the normal follows
-    /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; facing the ray where
-    /// no tangent plane exists).
+    /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; negated when
+    /// `reversed`; facing the ray where no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
         let (point, normal) = self.point_and_normal(found.u, found.v);
         found.to_hit(ray, point, normal)
+    }
+
+    /// Whether the ray hits the surface in `(t_min, t_max)`: exactly
+    /// `hit(…).is_some()`, stopping at the first piece with a hit.
+    pub(crate) fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        occluded(self.search_set(), ray, t_min, t_max, &self.tolerance)
     }
 
     /// `S(u, v)` and the [`normal`](Self::normal) there, from one jet.
@@ -157,6 +169,7 @@ impl PatchTable {
         let (u, v) = self.clamp(u, v);
         let first = self.jet(u, v, 1);
         let normal = self.normal_from(u, v, first[1][0], first[0][1]);
+        let normal = normal.map(|n| oriented(n, self.reversed));
         (Point3::from(first[0][0]), normal)
     }
 
@@ -185,11 +198,12 @@ impl PatchTable {
 
     /// The unit normal along `∂S/∂u × ∂S/∂v`, with the limit where that
     /// vanishes (see [`BezierSurface`](crate::BezierSurface)'s docs for the
-    /// rule).
+    /// rule); negated when `reversed`.
     pub(crate) fn normal(&self, u: f64, v: f64) -> Option<Unit<Vector3<f64>>> {
         let (u, v) = self.clamp(u, v);
         let first = self.jet(u, v, 1);
         self.normal_from(u, v, first[1][0], first[0][1])
+            .map(|n| oriented(n, self.reversed))
     }
 
     /// [`normal`](Self::normal) at `(u, v)` (in the domain) given the

@@ -126,6 +126,35 @@ pub(crate) fn intersect(
     }
 }
 
+/// Whether `ray` hits a patch of `set` with `t_min < t < t_max`: exactly
+/// [`intersect`]`(…).is_some()`, but the traversal stops at the first patch
+/// piece with a hit instead of going on for a nearer one (a hit past a
+/// side is still a hit: [`intersect`] only moves it).
+pub(crate) fn occluded(
+    set: PatchSet<'_>,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    tol: &Tolerance,
+) -> bool {
+    // NaN-safe: false when either is NaN.
+    let ordered = t_min < t_max;
+    let Some(frame) = Frame::new(ray, t_min, set.scale, tol).filter(|_| ordered) else {
+        return false;
+    };
+    let mut scratch = Scratch::default();
+    let mut found = false;
+    set.tree
+        .traverse(&BoxRay::new(ray), frame.t_floor, t_max, |k, t_best| {
+            if search_patch(set, k, &frame, &mut scratch, t_best).is_some() {
+                found = true;
+                return ControlFlow::Break(());
+            }
+            ControlFlow::Continue(t_best)
+        });
+    found
+}
+
 /// A hit whose Newton iterate ended just past its patch's side, moved onto
 /// that side, lies off the ray by up to that gap times the surface's speed
 /// (about 1e-12 of the size). The root is then inside a neighbouring piece

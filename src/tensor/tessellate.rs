@@ -109,7 +109,9 @@ struct Edge {
 /// each with its parameter rectangle) within `tolerance` (see the module
 /// docs); normals from the surface (the limit at collapsed edges; the mean
 /// of the adjacent faces' normals where the surface has none), `uv` in the
-/// patches' rectangles.
+/// patches' rectangles. The patches `k` with `reversed(k)` have their
+/// normals negated and their triangles wound the other way (a vertex shared
+/// by several patches keeps the orientation of the first that has it).
 ///
 /// # Errors
 /// [`Error::InvalidTolerance`] (not finite and positive);
@@ -121,6 +123,7 @@ pub(crate) fn tessellate_patches(
     degrees: (usize, usize),
     patches: &[Patch],
     tolerance: f64,
+    reversed: impl Fn(usize) -> bool,
 ) -> Result<Mesh, Error> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidTolerance { tolerance });
@@ -207,7 +210,8 @@ pub(crate) fn tessellate_patches(
         })
         .fold(0.0_f64, f64::max)
         + rounding;
-    build(degrees, patches, &edges, &counts, bound, vertices as usize)
+    let vertices = vertices as usize;
+    build(degrees, patches, &edges, &counts, bound, vertices, reversed)
 }
 
 /// A mesh with nothing in it.
@@ -221,7 +225,8 @@ fn empty_mesh() -> Mesh {
     }
 }
 
-/// The vertices (welded) and triangles for the chosen counts.
+/// The vertices (welded) and triangles for the chosen counts, turned the
+/// other way round on the patches `k` with `reversed(k)`.
 fn build(
     (p, q): (usize, usize),
     patches: &[Patch],
@@ -229,6 +234,7 @@ fn build(
     counts: &[(usize, usize)],
     bound: f64,
     vertices: usize,
+    reversed: impl Fn(usize) -> bool,
 ) -> Result<Mesh, Error> {
     let cells: usize = counts.iter().map(|&(a, b)| a * b).sum();
     let mut mesh = Mesh {
@@ -241,7 +247,10 @@ fn build(
     let mut normals: Vec<Option<Unit<Vector3<f64>>>> = try_with_capacity(vertices)?;
     let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
     let cols = q + 1;
+    // Each patch's new vertices and its triangles, to orient afterwards.
+    let mut ranges = Vec::with_capacity(patches.len());
     for ((patch, patch_edges), &(ns, nt)) in patches.iter().zip(edges).zip(counts) {
+        let first = (mesh.positions.len(), mesh.triangles.len());
         // A one-patch table gives the patch's normals (with their limits).
         let table = PatchTable::new(
             (p, q),
@@ -318,8 +327,14 @@ fn build(
                 }
             }
         }
+        ranges.push((first.0..mesh.positions.len(), first.1..mesh.triangles.len()));
     }
     mesh.normals = fill_normals(&mesh.positions, &mesh.triangles, &normals)?;
+    for (k, (vertices, triangles)) in ranges.into_iter().enumerate() {
+        if reversed(k) {
+            mesh.reverse_orientation(vertices, triangles);
+        }
+    }
     Ok(mesh)
 }
 

@@ -613,8 +613,8 @@ pub struct Tally {
 
 /// Compares the intersector with the reference on one ray: unless the
 /// reference flags the ray (doubtful, a root within `1e-4` of tangency or
-/// `1e-7` of a patch edge, two roots within `1e-7·size`), the walk of
-/// secondary rays finds exactly the reference's roots in `(0, ∞)`, in order,
+/// `1e-7` of a patch edge, two roots within `1e-7·size`), `intersect_all`
+/// finds exactly the reference's roots in `(0, ∞)`, in order,
 /// `t` within `1e-9·size/|d|` and `(u, v)` within `1e-6`.
 pub fn compare<S: Surface + Intersect>(
     s: &S,
@@ -630,7 +630,14 @@ pub fn compare<S: Surface + Intersect>(
         return;
     }
     let want = want.within(0.0, f64::INFINITY);
-    let got = walk_hits(s, ray, 0.0, f64::INFINITY, 12);
+    let mut got = Vec::new();
+    s.intersect_all(ray, 0.0, f64::INFINITY, &mut got);
+    assert_eq!(
+        got.first().copied(),
+        s.intersect(ray, 0.0, f64::INFINITY),
+        "intersect_all's first hit is not intersect's for {ray:?}"
+    );
+    assert_eq!(s.occluded(ray, 0.0, f64::INFINITY), !got.is_empty());
     let ts = |v: Vec<f64>| format!("{v:?}");
     assert_eq!(
         got.len(),

@@ -669,10 +669,11 @@ fn check_length<C: Curve<D>, const D: usize>(
     // bound).
     assert!(
         arc.upper.is_infinite() || arc.upper - arc.lower <= 2.0 * tolerance,
-        "{what}: [{}, {}] is {:e} wide for a tolerance of {tolerance:e}",
+        "{what}: [{}, {}] is {:e} wide for a tolerance of {tolerance:e} ({} pieces)",
         arc.lower,
         arc.upper,
-        arc.upper - arc.lower
+        arc.upper - arc.lower,
+        arc.pieces
     );
 }
 

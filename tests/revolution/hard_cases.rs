@@ -75,6 +75,11 @@ fn expect_hit<S: Surface + Intersect>(
         .intersect(r, t_min, t_max)
         .unwrap_or_else(|| panic!("missed the hit at t = {t_ref} of {r:?}"));
     check_hit(s, r, &h, t_min, t_max, scale);
+    // The other queries agree: `occluded`, and `intersect_all` first.
+    assert!(s.occluded(r, t_min, t_max), "not occluded but hit: {r:?}");
+    let mut all = Vec::new();
+    s.intersect_all(r, t_min, t_max, &mut all);
+    assert_eq!(all.first(), Some(&h), "intersect_all {all:?} for {r:?}");
     let tol = t_tolerance(scale, kappa, &r.dir);
     assert!(
         (h.t - t_ref).abs() <= tol,
@@ -88,6 +93,10 @@ fn expect_hit<S: Surface + Intersect>(
 fn expect_miss<S: Intersect>(s: &S, r: &Ray, t_min: f64, t_max: f64) {
     let h = s.intersect(r, t_min, t_max);
     assert!(h.is_none(), "false hit {h:?} for {r:?}");
+    assert!(!s.occluded(r, t_min, t_max), "occluded but missed: {r:?}");
+    let mut all = Vec::new();
+    s.intersect_all(r, t_min, t_max, &mut all);
+    assert!(all.is_empty(), "intersect_all {all:?} for {r:?}");
 }
 
 // ---------------------------------------------------------------------------
@@ -524,6 +533,7 @@ fn compare_chain<S: Surface + Intersect>(
         "test ray {r:?} is tangent to the surface: {refs:?}"
     );
     let mut t_min = t0;
+    let mut chain = Vec::new();
     for (i, want) in refs.iter().enumerate() {
         let got = s.intersect(r, t_min, t1).unwrap_or_else(|| {
             panic!(
@@ -544,12 +554,19 @@ fn compare_chain<S: Surface + Intersect>(
             (got.t - want.t).abs()
         );
         t_min = got.t;
+        chain.push(got);
     }
     let extra = s.intersect(r, t_min, t1);
     assert!(
         extra.is_none(),
         "hit {extra:?} after the last reference crossing of {r:?}; reference {refs:?}"
     );
+    // `intersect_all` gives the same chain in one call, `occluded` whether
+    // it is empty.
+    let mut all = Vec::new();
+    s.intersect_all(r, t0, t1, &mut all);
+    assert_eq!(all, chain, "intersect_all for {r:?}; reference {refs:?}");
+    assert_eq!(s.occluded(r, t0, t1), !chain.is_empty(), "{r:?}");
     refs.len()
 }
 

@@ -13,5 +13,6 @@ mod mesh;
 mod nearest;
 mod newton;
 mod own_profiles;
+mod queries;
 mod rational_revolution;
 mod revolution;

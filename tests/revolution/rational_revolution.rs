@@ -175,6 +175,12 @@ fn check_ray(shape: &Shape, ray: &Ray, t_min: f64, t_max: f64) -> Vec<Hit> {
         "hits at t = {:?}, the reference has {want:?}, for {ray:?} in ({t_min}, {t_max})",
         got.iter().map(|h| h.t).collect::<Vec<_>>()
     );
+    // `intersect_all` walks the same way and passes over the same repeats
+    // by itself; `occluded` says whether there is a hit.
+    let mut all = Vec::new();
+    shape.surface.intersect_all(ray, t_min, t_max, &mut all);
+    assert_eq!(all, got, "intersect_all for {ray:?} in ({t_min}, {t_max})");
+    assert_eq!(shape.surface.occluded(ray, t_min, t_max), !got.is_empty());
     got
 }
 

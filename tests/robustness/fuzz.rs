@@ -1332,6 +1332,7 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
     if judged {
         aimed_case(f, &s, &bounds, s.tolerance(), profile);
     }
+    queries_case(f, &s, &bounds, profile);
     if f.chance(8) {
         let scale = bounds.scale();
         let tolerance = match f.below(3) {
@@ -1709,6 +1710,7 @@ fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &
     }
     batch_case(f, s, &bounds, kind);
     aimed_case(f, s, &bounds, s.tolerance(), kind);
+    queries_case(f, s, &bounds, kind);
     if f.chance(10) {
         let tolerance = if f.chance(3) {
             f.number()
@@ -1752,6 +1754,44 @@ fn batch_case<S: Intersect + ?Sized>(f: &mut Fuzz, s: &S, bounds: &Aabb, kind: &
             single.map(|h| h.t.to_bits()) == hit.map(|h| h.t.to_bits()),
             "Intersect::intersect_batch",
             || format!("{kind}: {ray:?} ({t_min}, {t_max}): batch {hit:?}, single {single:?}"),
+        );
+    }
+}
+
+/// `intersect_all` and `occluded` on random rays and ranges: every hit in
+/// the range, `t` increasing, the first `intersect`'s; `occluded` exactly
+/// whether `intersect` hits.
+fn queries_case<S: Intersect + ?Sized>(f: &mut Fuzz, s: &S, bounds: &Aabb, kind: &str) {
+    let mut hits = Vec::new();
+    for _ in 0..2 {
+        let ray = ray_at(f, bounds);
+        let (t_min, t_max) = if f.chance(5) {
+            (f.number(), f.number())
+        } else {
+            (0.0, f64::INFINITY)
+        };
+        let Some(occluded) = f.call("Intersect::occluded", || s.occluded(&ray, t_min, t_max))
+        else {
+            continue;
+        };
+        if f.call("Intersect::intersect_all", || {
+            s.intersect_all(&ray, t_min, t_max, &mut hits)
+        })
+        .is_none()
+        {
+            continue;
+        }
+        let single = s.intersect(&ray, t_min, t_max);
+        f.check(occluded == single.is_some(), "Intersect::occluded", || {
+            format!("{kind}: {ray:?} ({t_min}, {t_max}): {occluded}, intersect {single:?}")
+        });
+        let ordered = hits.windows(2).all(|w| w[0].t < w[1].t);
+        let inside = hits.iter().all(|h| h.t > t_min && h.t < t_max);
+        let first = hits.first().map(|h| h.t.to_bits()) == single.map(|h| h.t.to_bits());
+        f.check(
+            ordered && inside && first,
+            "Intersect::intersect_all",
+            || format!("{kind}: {ray:?} ({t_min}, {t_max}): {hits:?}, intersect {single:?}"),
         );
     }
 }
@@ -1836,6 +1876,7 @@ fn aimed_case<S: Surface + Intersect>(
 fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
     let b = m.bounds();
     batch_case(f, m, &b, "BezierPatches");
+    queries_case(f, m, &b, "BezierPatches");
     for _ in 0..3 {
         let ray = ray_at(f, &b);
         if let Some(Some((k, hit))) = f.call("BezierPatches::intersect_patch", || {

@@ -175,12 +175,15 @@ impl Prim {
         }
     }
 
-    /// Whether anything is hit (meshes and tubes stop at the first).
+    /// Whether anything is hit (meshes, tubes, revolutions and surfaces stop
+    /// at the first).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut IntersectStats) -> bool {
         match self {
             Prim::Mesh(m) => m.occluded(ray, t_min, t_max),
             Prim::Tube(t) => t.occluded(ray, t_min, t_max),
+            Prim::Revolution(r) => r.occluded(ray, t_min, t_max, stats),
+            Prim::Surface(s) => s.occluded(ray, t_min, t_max),
             Prim::Triangle(t) => t.hit(ray, t_min, t_max).is_some(),
             _ => self.intersect(ray, t_min, t_max, stats).is_some(),
         }

@@ -107,6 +107,20 @@ impl RevolutionShape {
         self.hit(ray, t_min, t_max, stats).map(|h| self.local(&h))
     }
 
+    /// revolve's [`Intersect::occluded`] (the search stops at the first
+    /// span with a hit), timed into `stats` as a call.
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut IntersectStats) -> bool {
+        let start = Instant::now();
+        let blocked = match &*self.body {
+            RevolutionBody::Bezier(r) => r.occluded(ray, t_min, t_max),
+            RevolutionBody::BSpline(r) => r.occluded(ray, t_min, t_max),
+            RevolutionBody::Nurbs(r) => r.occluded(ray, t_min, t_max),
+        };
+        stats.revolution_calls += 1;
+        stats.revolution_nanos += start.elapsed().as_nanos() as u64;
+        blocked
+    }
+
     /// revolve's [`Intersect::intersect_batch`] over the lanes (at most
     /// [`LANES`]): `out[i]` is what [`Self::intersect`] gives for `rays[i]`
     /// in `ranges[i]`; counts one call per lane and times the batch.

@@ -47,6 +47,12 @@ impl SurfaceShape {
         self.bounds
     }
 
+    /// revolve's [`Intersect::occluded`]: the patch search stops at the
+    /// first piece with a hit.
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.body.target().occluded(ray, t_min, t_max)
+    }
+
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<LocalHit> {
         let h = self.body.target().intersect(ray, t_min, t_max)?;
         let unit = |x: f64, (a, b): (f64, f64)| ((x - a) / (b - a)).clamp(0.0, 1.0);
