@@ -329,3 +329,18 @@ fn bad_queries_and_broken_surfaces_are_errors() {
     let near = s.nearest_point(&Point3::new(1e100, -1e100, 1e100)).unwrap();
     assert!(near.certified && (near.distance / 3f64.sqrt() / 1e100 - 1.0).abs() <= 1e-15);
 }
+
+#[test]
+fn reversed_surfaces_have_the_same_nearest_points() {
+    // Reversal flips normals only: the same points, the same answers.
+    let place = placement();
+    let goblet = Revolution::new(wine_glass()).with_axis(place.0, place.1);
+    let mut rng = Rng(31);
+    for _ in 0..20 {
+        let p = rng.point_in(&goblet.bounds());
+        assert_eq!(
+            goblet.reversed().nearest_point(&p),
+            goblet.nearest_point(&p)
+        );
+    }
+}

@@ -548,3 +548,28 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn reversed_surfaces_have_the_same_nearest_points() {
+    // Reversal flips normals only: the same points, the same answers.
+    let gentle = common::patch_shapes::gentle_bicubic();
+    let octant = sphere_octant(1.0);
+    let model = BezierPatches::new(common::teapot::patches()).unwrap();
+    let mut rng = Xorshift64Star(29);
+    for _ in 0..20 {
+        let p = Point3::new(
+            rng.range(-2.0, 3.0),
+            rng.range(-2.0, 3.0),
+            rng.range(-2.0, 3.0),
+        );
+        assert_eq!(
+            gentle.reversed().nearest_point(&p),
+            gentle.nearest_point(&p)
+        );
+        assert_eq!(
+            octant.reversed().nearest_point(&p),
+            octant.nearest_point(&p)
+        );
+        assert_eq!(model.reversed().nearest_point(&p), model.nearest_point(&p));
+    }
+}
