@@ -165,13 +165,13 @@ pub trait Intersect {
     /// once. `hits.first()` is what `intersect(ray, t_min, t_max)` returns.
     ///
     /// The default walks the ray as secondary rays do
-    /// ([`walk_hits`](crate::ray::walk_hits)): `intersect(ray, tₖ, t_max)`
+    /// ([`walk_hits`]): `intersect(ray, tₖ, t_max)`
     /// from each hit `tₖ` gives the next, since a hit within the
     /// intersector's position uncertainty past `t_min` counts as the ray's
     /// own origin. A near-tangent root may be found once more just past
     /// itself; a hit whose distance from the surface could not have changed
     /// since the previous one (`Δt·|d·n|` within twice the acceptance, see
-    /// [`walk_hits`](crate::ray::walk_hits)) is that root again and is
+    /// [`walk_hits`]) is that root again and is
     /// passed over. No allocation beyond `hits` growing.
     ///
     /// ```
@@ -225,7 +225,7 @@ const MAX_REPEATS: usize = 8;
 /// between them, so nothing beyond the acceptance separates them. (The two
 /// roots of a ray grazing a surface, however close, cross it opposite ways
 /// and are both kept.) Such a repeat is passed over and the walk goes on
-/// from it; after [`MAX_REPEATS`] in a row (a ray lying in the surface) it
+/// from it; after `MAX_REPEATS` in a row (a ray lying in the surface) it
 /// stops. A `t` that does not increase (an
 /// intersector breaking its contract) stops it too, so it always ends.
 pub fn walk_hits(
