@@ -59,3 +59,14 @@ pub struct SurfaceNearest {
     /// numbers them: the order given); `0` for the single-surface kinds.
     pub patch: usize,
 }
+
+/// `|a − b|`: the plain norm where its squares can neither underflow nor
+/// overflow, else scaled by the largest component first.
+pub(crate) fn distance(a: &Point3<f64>, b: &Point3<f64>) -> f64 {
+    let d = a - b;
+    if (1e-150..=1e150).contains(&d.amax()) {
+        d.norm()
+    } else {
+        crate::curve::scaled_norm(d)
+    }
+}

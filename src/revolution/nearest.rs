@@ -4,8 +4,8 @@
 use super::meridian_newton::meridian_angle;
 use super::surface::Revolution;
 use super::turn_angle::turn_angle;
-use crate::curve::check_query_point;
-use crate::curve::{RationalBezier, RationalBezierSpan};
+use crate::curve::{RationalBezier, RationalBezierSpan, check_query_point, scaled_norm};
+use crate::surface_nearest::distance;
 use crate::{Curve, CurveProjector, Error, NearestPoint, SurfaceNearest};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 
@@ -74,13 +74,17 @@ impl<C: Curve<2>> Revolution<C> {
         let r = local.x.hypot(local.z);
         let near = self.profile_nearest(r, local.y)?;
         let x = near.point.x;
-        let (sn, cs) = meridian_angle(&local, x);
+        // The meridian's direction, scaled first so that its squares do not
+        // underflow for a point within 1e-154 of the axis.
+        let m = local.x.abs().max(local.z.abs());
+        let direction = if m > 0.0 { local / m } else { local };
+        let (sn, cs) = meridian_angle(&direction, x);
         let on_surface = Vector3::new(x * cs, near.point.y, -x * sn);
         let point = Point3::from(self.rotation * on_surface + origin);
         Ok(SurfaceNearest {
             uv: (near.t, turn_angle(sn, cs)),
             point,
-            distance: (point - p).norm(),
+            distance: distance(&point, p),
             certified: near.certified,
             patch: 0,
         })
@@ -196,7 +200,7 @@ fn polish(
     } else {
         span.curve.eval(s)
     };
-    let distance = (point - q).norm();
+    let distance = scaled_norm(point - q);
     let size = point.coords.amax().max(q.coords.amax());
     if distance <= near.distance + 16.0 * f64::EPSILON * size {
         let t = if s <= 0.0 {

@@ -147,6 +147,7 @@ impl BSplineSurface {
     }
 
     /// Whether the orientation is [reversed](Self::reversed).
+    #[cfg(feature = "serde")]
     pub(crate) fn is_reversed(&self) -> bool {
         self.core.table.reversed
     }

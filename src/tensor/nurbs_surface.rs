@@ -139,6 +139,7 @@ impl NurbsSurface {
     }
 
     /// Whether the orientation is [reversed](Self::reversed).
+    #[cfg(feature = "serde")]
     pub(crate) fn is_reversed(&self) -> bool {
         self.core.table.reversed
     }

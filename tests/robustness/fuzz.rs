@@ -26,7 +26,8 @@ use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2
 use revolve::{
     Aabb, BSpline, BSplineSurface, Bezier, BezierPatches, BezierSpan, BezierSurface, Curve, Error,
     Hit, Intersect, MAX_COORDINATE, MAX_SEGMENTS, Mesh, NewtonIntersector, Nurbs, NurbsSurface,
-    PatchBounds, RationalBezier, RationalBezierSpan, Ray, Revolution, Surface, Tolerance,
+    PatchBounds, RationalBezier, RationalBezierSpan, Ray, Revolution, Surface, SurfaceNearest,
+    Tolerance,
 };
 use std::any::Any;
 use std::cell::RefCell;
@@ -1343,6 +1344,10 @@ fn revolution_case<C: Curve<2>>(f: &mut Fuzz, c: C, profile: &'static str, judge
             f.mesh_is_sane(profile, &mesh, tolerance);
         }
     }
+    let sample = |f: &mut Fuzz| surface_sample(f, &s);
+    nearest_case(f, (&bounds, judged), profile, &sample, &|p| {
+        s.nearest_point(p)
+    });
 }
 
 impl Fuzz {
@@ -1724,6 +1729,8 @@ fn tensor_case<S: Surface + Intersect + TensorMesh>(f: &mut Fuzz, s: &S, kind: &
             f.mesh_outputs(kind, &mesh);
         }
     }
+    let sample = |f: &mut Fuzz| surface_sample(f, s);
+    nearest_case(f, (&bounds, true), kind, &sample, &|p| s.nearest(p));
 }
 
 /// `intersect_batch` over random rays and ranges (slices of unequal
@@ -1872,6 +1879,85 @@ fn aimed_case<S: Surface + Intersect>(
     }
 }
 
+/// `nearest_point` from query points near the surface, on it (a surface
+/// point nudged), and anywhere (any coordinates, NaN included): an answer
+/// whose distance is `|point − P|`; certified, no surface sample `eval(uv)`
+/// (from `sample`, 32 random draws) is nearer beyond `1e-9` of the size; an
+/// `InvalidQueryPoint` error only for a query point beyond the limits.
+/// Surfaces whose profile breaks the curve contract (its spans another
+/// curve than its `eval`) are not `judged` against the samples.
+fn nearest_case(
+    f: &mut Fuzz,
+    (bounds, judged): (&Aabb, bool),
+    kind: &str,
+    sample: &dyn Fn(&mut Fuzz) -> Option<Point3<f64>>,
+    nearest: &dyn Fn(&Point3<f64>) -> Result<SurfaceNearest, Error>,
+) {
+    let p = match f.below(3) {
+        0 if !bounds.is_empty() => {
+            let size = bounds.extent().amax().min(f64::MAX / 8.0);
+            bounds.center() + f.rng.direction() * size * 10f64.powf(f.rng.range(-3.0, 1.0))
+        }
+        1 => match sample(f) {
+            Some(q) => {
+                q + f.rng.direction() * q.coords.amax() * 10f64.powf(f.rng.range(-16.0, -2.0))
+            }
+            None => return,
+        },
+        _ => Point3::new(f.number(), f.number(), f.number()),
+    };
+    let Some(answer) = f.call("nearest_point", || nearest(&p)) else {
+        return;
+    };
+    let valid = p.coords.iter().all(|c| c.abs() <= MAX_COORDINATE);
+    let near = match answer {
+        Ok(near) => near,
+        Err(e) => {
+            let refused = matches!(e, Error::InvalidQueryPoint { .. });
+            f.check(!refused || !valid, "nearest_point", || {
+                format!("{kind}: {p:?} refused: {e:?}")
+            });
+            return;
+        }
+    };
+    let size = bounds.scale().max(p.coords.amax());
+    // Lengths scaled before squaring: tiny surfaces' squares underflow.
+    let length = |v: Vector3<f64>| {
+        let m = v.amax();
+        if m > 0.0 { m * (v / m).norm() } else { 0.0 }
+    };
+    let computed = length(near.point - p);
+    f.check(
+        finite_point(&near.point)
+            && near.distance.is_finite()
+            && (computed - near.distance).abs() <= 1e-9 * size,
+        "nearest_point",
+        || format!("{kind}: {p:?}: {near:?} (|point − P| = {computed:e})"),
+    );
+    if near.certified && judged {
+        for _ in 0..32 {
+            let Some(q) = sample(f) else {
+                continue;
+            };
+            let d = length(q - p);
+            f.check(d >= near.distance - 1e-9 * size, "nearest_point", || {
+                format!("{kind} of scale {size:e}: {p:?}: {near:?}, but {q:?} is at {d:e}")
+            });
+        }
+    }
+}
+
+/// A random point `S(u, v)` of a surface's domain.
+fn surface_sample<S: Surface>(f: &mut Fuzz, s: &S) -> Option<Point3<f64>> {
+    let [du, dv] = s.domain();
+    let (u, v) = (
+        du.0 + (du.1 - du.0) * f.rng.unit(),
+        dv.0 + (dv.1 - dv.0) * f.rng.unit(),
+    );
+    let q = s.eval(u, v);
+    finite_point(&q).then_some(q)
+}
+
 /// A model of patches: intersection without panic or NaN.
 fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
     let b = m.bounds();
@@ -1889,12 +1975,21 @@ fn patches_case(f: &mut Fuzz, m: &BezierPatches) {
             );
         }
     }
+    let sample = |f: &mut Fuzz| {
+        let k = f.below(m.len());
+        surface_sample(f, &m.patches()[k])
+    };
+    nearest_case(f, (&b, true), "BezierPatches", &sample, &|p| {
+        m.nearest_point(p)
+    });
 }
 
-/// The tensor surfaces' `tessellate` and `tolerance`, behind one name.
+/// The tensor surfaces' `tessellate`, `tolerance` and `nearest_point`,
+/// behind one name.
 trait TensorMesh {
     fn mesh(&self, tolerance: f64) -> Result<Mesh, Error>;
     fn tolerance(&self) -> &Tolerance;
+    fn nearest(&self, p: &Point3<f64>) -> Result<SurfaceNearest, Error>;
 }
 
 impl TensorMesh for BezierSurface {
@@ -1903,6 +1998,9 @@ impl TensorMesh for BezierSurface {
     }
     fn tolerance(&self) -> &Tolerance {
         BezierSurface::tolerance(self)
+    }
+    fn nearest(&self, p: &Point3<f64>) -> Result<SurfaceNearest, Error> {
+        self.nearest_point(p)
     }
 }
 
@@ -1913,6 +2011,9 @@ impl TensorMesh for BSplineSurface {
     fn tolerance(&self) -> &Tolerance {
         BSplineSurface::tolerance(self)
     }
+    fn nearest(&self, p: &Point3<f64>) -> Result<SurfaceNearest, Error> {
+        self.nearest_point(p)
+    }
 }
 
 impl TensorMesh for NurbsSurface {
@@ -1921,6 +2022,9 @@ impl TensorMesh for NurbsSurface {
     }
     fn tolerance(&self) -> &Tolerance {
         NurbsSurface::tolerance(self)
+    }
+    fn nearest(&self, p: &Point3<f64>) -> Result<SurfaceNearest, Error> {
+        self.nearest_point(p)
     }
 }
 
