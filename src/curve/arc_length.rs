@@ -214,15 +214,12 @@ trait Source<const D: usize> {
         0.0
     }
     /// The work of one [`Source::bracket`] of two parts (see
-    /// [`MAX_CERTIFICATE_WORK`]).
+    /// [`MAX_CERTIFICATE_WORK`]); zero for a source that certifies nothing.
+    /// Where it can certify, a piece is accepted only once its bracket is
+    /// within its share of the tolerance.
     fn certificate_work(&self) -> usize {
         0
     }
-
-    /// Whether [`Source::bracket`] can certify pieces: where it can, a
-    /// piece is accepted only once its bracket is within its share of the
-    /// tolerance.
-    const CERTIFIES: bool = false;
 
     /// A rigorous bracket of the total length of `parts` (each a parameter
     /// interval and the rule's value on it), where the speed is certified
@@ -287,8 +284,6 @@ impl<const D: usize> Source<D> for SpanSource<D> {
             bernstein::eval(&self.coeffs, s).unwrap_or_else(Homogeneous::zero),
         ))
     }
-
-    const CERTIFIES: bool = true;
 
     /// Each vertex (an evaluation, or two subdivisions) is within the
     /// speed's rounding bound of its exact place.
@@ -459,7 +454,7 @@ impl<S> Adaptive<'_, S> {
             } else {
                 None
             };
-            let tight = !S::CERTIFIES
+            let tight = self.source.certificate_work() == 0
                 || polygon - chord <= 2.0 * allowed
                 || certified.is_some_and(|c| c.quadrature <= allowed);
             // Chord and polygon widened by their vertices' rounding.
