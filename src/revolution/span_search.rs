@@ -22,8 +22,8 @@ use nalgebra::{Point3, Vector3};
 use std::cmp::Ordering::Less;
 
 /// Ray origins farther than this many times the object's scale from the
-/// axis origin are moved along their line first (see
-/// [`SpanTable::intersect`]).
+/// axis origin, or this many times its largest radius from the axis, are
+/// moved along their line first (see [`SpanTable::intersect`]).
 const REORIGIN: f64 = 1e3;
 /// Ray directions whose largest component is in this range are used as
 /// they are; others are first brought to unit length (see
@@ -113,10 +113,11 @@ impl SpanTable {
     ///   becomes a unit vector (its length found without overflow), so that
     ///   `|d|` anywhere in the floating-point range works;
     /// - an origin farther than [`REORIGIN`] times the object's scale from
-    ///   the axis origin moves along the line to the line's point nearest
-    ///   that origin (a line that passes farther than twice the object's
+    ///   the axis origin, or than `REORIGIN` times its largest radius from
+    ///   the axis, moves along the line to the line's point nearest that
+    ///   origin (a line that passes farther than twice the object's
     ///   bounding ball is a miss), so that far origins neither overflow the
-    ///   squares nor blur the culling;
+    ///   squares nor blur the culling, nor drown a thin profile's radius;
     /// - lengths are multiplied by the table's power of two (`unit`), which
     ///   is exact.
     ///
@@ -159,7 +160,11 @@ impl SpanTable {
         }
         // Along the ray: t·dn before the move, minus `shift` after (in units
         // of the working |d|).
-        let far = o.coords.amax() * self.unit > REORIGIN * self.scale;
+        // Far compared with the size, or, from the axis, with the largest
+        // radius: the squared distances from the axis would otherwise
+        // drown a thin profile's squared radius in their rounding.
+        let far = o.coords.amax() * self.unit > REORIGIN * self.scale
+            || o.x.abs().max(o.z.abs()) * self.unit > REORIGIN * self.r_max;
         let shift = if far {
             -o.coords.dot(&d) / d.norm_squared()
         } else {

@@ -970,3 +970,44 @@ fn the_arc_length_bracket_is_as_tight_as_the_quadrature() {
     assert!(arc.lower <= exact && exact <= arc.upper, "{arc:?}");
     assert!(arc.upper - arc.lower <= 2e-11, "{arc:?}");
 }
+
+/// A needle (a cone 2 high and 1.07e-4 wide at its top) hit from about 500
+/// sizes away, with a direction of length 1e26, aimed at a point 2.4e-5 from
+/// the axis: missed. The hit polynomial compares squared distances from the
+/// axis (about 1e6 at the ray's origin) with the squared radius (6e-10),
+/// which was below their rounding; the origin is now moved near the object
+/// when it is far compared with the largest radius, not only with the size.
+#[test]
+fn a_needle_is_hit_from_afar() {
+    let needle = Revolution::new(
+        Bezier::new(vec![
+            p(1e-16, -0.031032867689604803),
+            p(0.0001074720033395104, 2.00914617476365),
+        ])
+        .unwrap(),
+    );
+    let origin = Point3::new(-464.43585258041776, 854.6186067634645, -499.03797548721906);
+    let dir = Vector3::new(
+        4.376939663608576e25,
+        -8.049852979311228e25,
+        4.703036915373883e25,
+    );
+    let aimed = Point3::new(
+        2.4006312924671794e-5,
+        0.4508977760424223,
+        -8.258169641615938e-6,
+    );
+    let ray = Ray::new(origin, dir);
+    let hit = needle
+        .intersect(&ray, 0.0, f64::INFINITY)
+        .expect("the ray crosses the needle at the aimed point");
+    // On the ray, and not beyond the aimed point (the ray crosses the near
+    // wall first, at most the needle's width before it).
+    let reach = (aimed - origin).norm();
+    assert!(
+        (ray.at(hit.t) - hit.point).norm() <= 1e-12 * reach,
+        "{hit:?}"
+    );
+    let before = (aimed - hit.point).dot(&dir.normalize());
+    assert!((-1e-9..=3e-4).contains(&before), "{before:e}: {hit:?}");
+}
