@@ -141,9 +141,9 @@ impl BSplineSurface {
     /// and knot insertion keep the orientation. `reversed().reversed()` is
     /// the original.
     pub fn reversed(&self) -> Self {
-        let mut surface = self.clone();
-        surface.core.table.reversed = !surface.core.table.reversed;
-        surface
+        Self {
+            core: self.core.reversed(),
+        }
     }
 
     /// Whether the orientation is [reversed](Self::reversed).
@@ -316,6 +316,14 @@ fn in_direction(direction: ParameterDirection) -> impl Fn(Error) -> Error {
 }
 
 impl TensorSpline {
+    /// The same spline with the opposite orientation (the surface kinds'
+    /// `reversed`): only the table's flag changes.
+    pub(crate) fn reversed(&self) -> Self {
+        let mut spline = self.clone();
+        spline.table.reversed = !spline.table.reversed;
+        spline
+    }
+
     /// Validates and builds (`weights: None` for a polynomial spline).
     pub(crate) fn new(
         degrees: (usize, usize),

@@ -133,9 +133,9 @@ impl NurbsSurface {
     /// [`to_bezier_patches`](Self::to_bezier_patches) has none).
     /// `reversed().reversed()` is the original.
     pub fn reversed(&self) -> Self {
-        let mut surface = self.clone();
-        surface.core.table.reversed = !surface.core.table.reversed;
-        surface
+        Self {
+            core: self.core.reversed(),
+        }
     }
 
     /// Whether the orientation is [reversed](Self::reversed).

@@ -83,18 +83,25 @@ impl RevolutionShape {
         self.flip
     }
 
+    /// `query` (a call on revolve's surface), counted and timed into
+    /// `stats` as one call.
+    #[inline]
+    fn timed<R>(stats: &mut IntersectStats, query: impl FnOnce() -> R) -> R {
+        let start = Instant::now();
+        let answer = query();
+        stats.revolution_calls += 1;
+        stats.revolution_nanos += start.elapsed().as_nanos() as u64;
+        answer
+    }
+
     /// revolve's exact intersector, timed into `stats`.
     #[inline]
     fn hit(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut IntersectStats) -> Option<Hit> {
-        let start = Instant::now();
-        let hit = match &*self.body {
+        Self::timed(stats, || match &*self.body {
             RevolutionBody::Bezier(r) => r.intersect(ray, t_min, t_max),
             RevolutionBody::BSpline(r) => r.intersect(ray, t_min, t_max),
             RevolutionBody::Nurbs(r) => r.intersect(ray, t_min, t_max),
-        };
-        stats.revolution_calls += 1;
-        stats.revolution_nanos += start.elapsed().as_nanos() as u64;
-        hit
+        })
     }
 
     pub fn intersect(
@@ -110,15 +117,11 @@ impl RevolutionShape {
     /// revolve's [`Intersect::occluded`] (the search stops at the first
     /// span with a hit), timed into `stats` as a call.
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut IntersectStats) -> bool {
-        let start = Instant::now();
-        let blocked = match &*self.body {
+        Self::timed(stats, || match &*self.body {
             RevolutionBody::Bezier(r) => r.occluded(ray, t_min, t_max),
             RevolutionBody::BSpline(r) => r.occluded(ray, t_min, t_max),
             RevolutionBody::Nurbs(r) => r.occluded(ray, t_min, t_max),
-        };
-        stats.revolution_calls += 1;
-        stats.revolution_nanos += start.elapsed().as_nanos() as u64;
-        blocked
+        })
     }
 
     /// revolve's [`Intersect::intersect_batch`] over the lanes (at most
