@@ -44,9 +44,10 @@ pub struct SurfaceNearest {
     /// the profile's parameter and the angle in `[0, 2π]`; for
     /// [`BezierPatches`](crate::BezierPatches) the patch's own `[0, 1]²`).
     pub uv: (f64, f64),
-    /// The nearest point `S(u, v)`.
+    /// The nearest point `S(u, v)`, but for the rounding of `uv` (as a
+    /// hit's point: see [`Hit::uv`](crate::Hit::uv)).
     pub point: Point3<f64>,
-    /// Its distance `|S(u, v) − P|` from the query point.
+    /// Its distance `|point − P|` from the query point.
     pub distance: f64,
     /// `true` when the answer is certified global (see the kind's
     /// `nearest_point`); `false` for a revolution whose profile has no

@@ -100,13 +100,19 @@ impl SplitDirection {
 /// A ray–surface intersection.
 ///
 /// - `t`: the ray parameter, in units of `|dir|`.
-/// - `point`: the surface point `S(uv)`; `origin + t·dir` lies within the
-///   solver's accepted residual of it (`max(tolerance, 1e-9) ×` the object's
-///   scale; after Newton's polish usually a few ulps).
+/// - `point`: the surface point hit, `S(uv)` but for the rounding of `uv`
+///   (see `uv`); `origin + t·dir` lies within the solver's accepted
+///   residual of it (`max(tolerance, 1e-9) ×` the object's scale; after
+///   Newton's polish usually a few ulps).
 /// - `normal`: the surface's unit normal at the hit, oriented as the surface
 ///   defines it ([`Surface::normal`](crate::Surface::normal)), not flipped
 ///   toward the ray; compare its sign with `dir` to tell front from back.
-/// - `uv`: the surface parameters of the hit.
+/// - `uv`: the surface parameters of the hit, rounded to `f64`: `S(uv)` lies
+///   within about `ε·(|u|·|S_u| + |v|·|S_v|)` of `point`. That is a few ulps
+///   of the size unless a knot span is only a few ulps of its magnitude wide
+///   (a patch's `u` domain `[0.27, 0.27 + 2 ulps]` can take three values):
+///   the point then comes from the patch at the exact parameters, and `uv`
+///   is their nearest representable value.
 ///
 /// Never holds NaN.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -121,12 +121,12 @@ impl BezierPatches {
     /// `∂S/∂u × ∂S/∂v` (its limit at collapsed edges, as on the teapot's lid;
     /// facing the ray where the patch has no tangent plane).
     pub fn intersect_patch(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, Hit)> {
-        let mut found = intersect(self.search.set(), ray, t_min, t_max, &self.tolerance)?;
-        found.patch = self.search.owner(found.patch);
-        let surface = &self.surfaces[found.patch];
-        let (point, normal) = surface.point_and_normal(found.u, found.v);
+        let found = intersect(self.search.set(), ray, t_min, t_max, &self.tolerance)?;
+        let (patch, st) = self.search.on_owner(found.patch, found.st);
+        let table = self.surfaces[patch].table();
+        let (point, normal) = table.point_and_normal_on(&table.patches[0], st, (found.u, found.v));
         let hit = found.to_hit(ray, point, normal)?;
-        Some((found.patch, hit))
+        Some((patch, hit))
     }
 
     /// A triangle mesh within `tolerance` of every patch, each cut as in

@@ -181,16 +181,6 @@ impl BezierSurface {
         self.table.degrees
     }
 
-    /// `S(u, v)` and the unit normal there (as [`Surface::eval`] and
-    /// [`Surface::normal`] give them), from one evaluation.
-    pub(crate) fn point_and_normal(
-        &self,
-        u: f64,
-        v: f64,
-    ) -> (Point3<f64>, Option<Unit<Vector3<f64>>>) {
-        self.table.point_and_normal(u, v)
-    }
-
     /// The patch table (for the nearest-point search).
     pub(crate) fn table(&self) -> &PatchTable {
         &self.table

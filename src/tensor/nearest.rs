@@ -25,13 +25,6 @@ const MAX_PIECES: usize = 4096;
 /// uncertified).
 const MAX_RELATIVE_ALLOWANCE: f64 = 1e-8;
 
-/// The largest control-point coordinate up to which an answer is
-/// certified. Beyond it the search has returned points far from the nearest
-/// (two B-spline and NURBS surfaces of size 7e99 and 9e99 in the fuzz
-/// targets, a sampled point nearer by most of the size), so such answers
-/// say `certified: false` until that is understood.
-const MAX_CERTIFIED_SIZE: f64 = 1e95;
-
 /// Newton steps per piece at most.
 const NEWTON_STEPS: usize = 8;
 
@@ -199,7 +192,6 @@ impl Search {
     fn new(patches: &[PatchRef<'_>], p: &Point3<f64>) -> Option<Self> {
         let (mut arena, mut slots) = (Vec::new(), Vec::with_capacity(patches.len()));
         let (mut size, mut largest, mut ratio) = (p.coords.amax(), 0.0_f64, 1.0_f64);
-        let mut net_size = 0.0_f64;
         let (mut p_max, mut q_max) = (0, 0);
         let mut forms: Vec<DistanceForm> = Vec::new();
         let mut magnitudes = Vec::with_capacity(patches.len());
@@ -215,7 +207,6 @@ impl Search {
             let offset = arena.len();
             for h in patch.net {
                 size = size.max((h.wp / h.w).amax());
-                net_size = net_size.max((h.wp / h.w).amax());
                 magnitude = magnitude.max(h.wp.amax() + p.coords.amax() * h.w);
                 let y = h.wp - p.coords * h.w;
                 largest = largest.max(y.amax() / h.w);
@@ -268,7 +259,7 @@ impl Search {
             slot.errors = (steps * U * magnitude * scale, e_w);
         }
         let delta = allowance((p_max, q_max), ratio, size);
-        let trusted = delta <= MAX_RELATIVE_ALLOWANCE * size && net_size <= MAX_CERTIFIED_SIZE;
+        let trusted = delta <= MAX_RELATIVE_ALLOWANCE * size;
         let delta = delta.min(MAX_RELATIVE_ALLOWANCE * size) * scale;
         let most = patches
             .iter()
@@ -572,7 +563,9 @@ impl PatchTable {
             }
         };
         let uv = (along(found.st.0, patch.u), along(found.st.1, patch.v));
-        let point = self.eval(uv.0, uv.1);
+        // From the patch at the exact parameters (`uv` rounds them: see
+        // `Hit::uv` for where that matters).
+        let point = self.point_on(patch, found.st);
         Ok(SurfaceNearest {
             uv,
             point,
@@ -624,9 +617,10 @@ impl BezierSurface {
     /// Bernstein form: boxes alone, which settle a minimum only by luck),
     /// and where `δ` would exceed `10⁻⁸` of the size (weights within a
     /// patch differing by a factor of about 300 or more, for a bicubic; the
-    /// search then uses `δ = 10⁻⁸·size`), and for control points beyond
-    /// `1e95` (where the search has been seen to miss the nearest point),
-    /// the best point found is returned with `certified: false`.
+    /// search then uses `δ = 10⁻⁸·size`), the best point found is returned
+    /// with `certified: false`. The point is the patch's at the exact
+    /// parameters found; `uv` rounds them (see [`Hit::uv`](crate::Hit::uv)
+    /// for where that matters).
     ///
     /// ```
     /// use revolve::{BezierSurface, Surface};

@@ -210,6 +210,7 @@ pub(super) fn accept(
         t: along / f.dn,
         u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
         v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+        st: (s, t),
         past_side: false,
     })
 }

@@ -152,6 +152,9 @@ pub(crate) struct PatchHit {
     pub(crate) t: f64,
     pub(crate) u: f64,
     pub(crate) v: f64,
+    /// The hit's parameters `(s, t)` on piece `patch`, each in `[0, 1]`:
+    /// `(u, v)` is their image, rounded.
+    pub(crate) st: (f64, f64),
     /// Newton's method ended past the patch's side (by at most its
     /// slack) and `(u, v)` was moved onto it: the root may lie on the
     /// neighbouring patch, where it can be found without that move.

@@ -110,12 +110,32 @@ impl PatchTable {
     /// The jet of the surface at `(u, v)` (clamped), orders `≤ order ≤ 2`,
     /// with respect to the surface's own parameters.
     pub(crate) fn jet(&self, u: f64, v: f64, order: usize) -> Jet<Vector3<f64>> {
+        let (patch, st) = self.locate(u, v);
+        self.jet_on(patch, st, order)
+    }
+
+    /// The patch holding `(u, v)` (clamped) and the point's parameters
+    /// `(s, t)` on it, each in `[0, 1]`.
+    fn locate(&self, u: f64, v: f64) -> (&Patch, (f64, f64)) {
         let (u, v) = self.clamp(u, v);
         let (a, b) = (locate(&self.u_breaks, u), locate(&self.v_breaks, v));
         let patch = &self.patches[a * (self.v_breaks.len() - 1) + b];
+        let s = ((u - patch.u.0) / (patch.u.1 - patch.u.0)).clamp(0.0, 1.0);
+        let t = ((v - patch.v.0) / (patch.v.1 - patch.v.0)).clamp(0.0, 1.0);
+        (patch, (s, t))
+    }
+
+    /// The point at `(s, t)` (clamped into `[0, 1]²`) of `patch` (one of
+    /// the table's).
+    pub(crate) fn point_on(&self, patch: &Patch, (s, t): (f64, f64)) -> Point3<f64> {
+        let st = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
+        Point3::from(self.jet_on(patch, st, 0)[0][0])
+    }
+
+    /// The jet at `(s, t)` of `patch` (one of the table's), with respect
+    /// to the surface's own parameters.
+    fn jet_on(&self, patch: &Patch, (s, t): (f64, f64), order: usize) -> Jet<Vector3<f64>> {
         let (wu, wv) = (patch.u.1 - patch.u.0, patch.v.1 - patch.v.0);
-        let s = ((u - patch.u.0) / wu).clamp(0.0, 1.0);
-        let t = ((v - patch.v.0) / wv).clamp(0.0, 1.0);
         let cols = self.degrees.1 + 1;
         // Orders up to one by the Bernstein bases, higher by de Casteljau.
         let h = match first_jet(&patch.net, cols, s, t).filter(|_| order <= 1) {
@@ -149,9 +169,30 @@ impl PatchTable {
     /// `∂S/∂u × ∂S/∂v` (its limit where that vanishes; negated when
     /// `reversed`; facing the ray where no tangent plane exists).
     pub(crate) fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let found = intersect(self.search_set(), ray, t_min, t_max, &self.tolerance)?;
-        let (point, normal) = self.point_and_normal(found.u, found.v);
+        let search = self.search_pieces();
+        let found = intersect(search.set(), ray, t_min, t_max, &self.tolerance)?;
+        let (owner, st) = search.on_owner(found.patch, found.st);
+        let (point, normal) =
+            self.point_and_normal_on(&self.patches[owner], st, (found.u, found.v));
         found.to_hit(ray, point, normal)
+    }
+
+    /// The point and normal at `(s, t)` of `patch` (one of the table's),
+    /// whose surface parameters are `(u, v)`: evaluated at `(s, t)`, which
+    /// resolve the point even where `(u, v)` cannot (a domain a few ulps
+    /// wide at a large parameter value: `u` takes only a few values there;
+    /// see [`Hit::uv`]).
+    pub(crate) fn point_and_normal_on(
+        &self,
+        patch: &Patch,
+        st: (f64, f64),
+        (u, v): (f64, f64),
+    ) -> (Point3<f64>, Option<Unit<Vector3<f64>>>) {
+        let (u, v) = self.clamp(u, v);
+        let first = self.jet_on(patch, st, 1);
+        let normal = self.normal_from(u, v, first[1][0], first[0][1]);
+        let normal = normal.map(|n| oriented(n, self.reversed));
+        (Point3::from(first[0][0]), normal)
     }
 
     /// Whether the ray hits the surface in `(t_min, t_max)`: exactly
@@ -160,24 +201,15 @@ impl PatchTable {
         occluded(self.search_set(), ray, t_min, t_max, &self.tolerance)
     }
 
-    /// `S(u, v)` and the [`normal`](Self::normal) there, from one jet.
-    pub(crate) fn point_and_normal(
-        &self,
-        u: f64,
-        v: f64,
-    ) -> (Point3<f64>, Option<Unit<Vector3<f64>>>) {
-        let (u, v) = self.clamp(u, v);
-        let first = self.jet(u, v, 1);
-        let normal = self.normal_from(u, v, first[1][0], first[0][1]);
-        let normal = normal.map(|n| oriented(n, self.reversed));
-        (Point3::from(first[0][0]), normal)
-    }
-
     /// What the ray–patch search runs over.
     pub(crate) fn search_set(&self) -> PatchSet<'_> {
+        self.search_pieces().set()
+    }
+
+    /// The search's pieces, built by the first call.
+    fn search_pieces(&self) -> &SearchPieces {
         self.search
             .get_or_init(|| SearchPieces::new(&self.patches, self.degrees))
-            .set()
     }
 
     /// A box around the surface (its control points, padded for rounding).

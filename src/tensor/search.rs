@@ -537,6 +537,7 @@ fn corner_hit(patch: &Patch, k: usize, c: [f64; 4], (s, t): (f64, f64), dn: f64)
         t: c[2] / c[3] / dn,
         u: patch.u.0 + (patch.u.1 - patch.u.0) * s,
         v: patch.v.0 + (patch.v.1 - patch.v.0) * t,
+        st: (s, t),
         past_side: false,
     }
 }

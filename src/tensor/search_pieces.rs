@@ -35,6 +35,8 @@ use crate::ray::wide_bvh::WideBvh;
 /// The most times a patch is cut in each direction (up to `4^MAX_CUTS`
 /// pieces per patch).
 pub(crate) const MAX_CUTS: usize = 4;
+// A piece's cell index `(i, j) < 2^MAX_CUTS` is kept in a byte.
+const _: () = assert!(MAX_CUTS <= 8);
 
 /// Cuts beyond the second are made only while the surface keeps at most
 /// this many pieces (the teapot's 32 patches stop at three cuts, a single
@@ -62,6 +64,11 @@ pub(crate) struct SearchPieces {
     pieces: Vec<Patch>,
     /// The index of the patch each piece was cut from.
     owners: Vec<u32>,
+    /// How many times every patch was cut in each direction.
+    depth: usize,
+    /// Each piece's cell `(i, j)` in its patch: the rectangle
+    /// `[i, i + 1]·2⁻ᵈᵉᵖᵗʰ × [j, j + 1]·2⁻ᵈᵉᵖᵗʰ` of the patch's `[0, 1]²`.
+    cells: Vec<(u8, u8)>,
     tree: WideBvh,
     /// A box holding every piece's control points, padded for rounding.
     bounds: Aabb,
@@ -76,6 +83,7 @@ impl SearchPieces {
     pub(crate) fn new(patches: &[Patch], degrees: (usize, usize)) -> Self {
         let mut pieces: Vec<Patch> = patches.to_vec();
         let mut owners: Vec<u32> = (0..patches.len() as u32).collect();
+        let mut cells: Vec<(u8, u8)> = vec![(0, 0); patches.len()];
         let mut depth = 0;
         let affordable = |depth: usize, count: usize| depth < 2 || 4 * count <= PIECE_BUDGET;
         let rough = |p: &Patch| !is_flat(p, degrees);
@@ -114,11 +122,15 @@ impl SearchPieces {
             certificates = None;
             let mut finer = Vec::with_capacity(4 * pieces.len());
             let mut finer_owners = Vec::with_capacity(4 * pieces.len());
-            for (piece, &owner) in pieces.iter().zip(&owners) {
+            let mut finer_cells = Vec::with_capacity(4 * pieces.len());
+            for ((piece, &owner), &(i, j)) in pieces.iter().zip(&owners).zip(&cells) {
                 finer.extend(quarters(piece, degrees));
                 finer_owners.extend([owner; 4]);
+                // In the order `quarters` gives them.
+                let (i, j) = (2 * i, 2 * j);
+                finer_cells.extend([(i, j), (i, j + 1), (i + 1, j), (i + 1, j + 1)]);
             }
-            (pieces, owners) = (finer, finer_owners);
+            (pieces, owners, cells) = (finer, finer_owners, finer_cells);
             depth += 1;
         }
         let certificates = certificates.unwrap_or_else(|| certify(&pieces));
@@ -142,6 +154,8 @@ impl SearchPieces {
             pieces: order.iter().map(|&k| pieces[k].clone()).collect(),
             certificates: order.iter().map(|&k| certificates[k].clone()).collect(),
             owners: order.iter().map(|&k| owners[k]).collect(),
+            depth,
+            cells: order.iter().map(|&k| cells[k]).collect(),
             scale,
         }
     }
@@ -162,12 +176,21 @@ impl SearchPieces {
         self.owners[piece] as usize
     }
 
+    /// The patch piece `piece` was cut from, and the point `(s, t)` of the
+    /// piece in that patch's own parameters (exact: the pieces' sides are
+    /// dyadic fractions of the patch).
+    pub(crate) fn on_owner(&self, piece: usize, (s, t): (f64, f64)) -> (usize, (f64, f64)) {
+        let (i, j) = self.cells[piece];
+        let cell = 0.5f64.powi(self.depth as i32);
+        let along = |k: u8, x: f64| ((f64::from(k) + x) * cell).clamp(0.0, 1.0);
+        (self.owner(piece), (along(i, s), along(j, t)))
+    }
+
     /// How many times the patches were cut in each direction: patch 0
     /// has `4^depth` pieces.
     #[cfg(test)]
     pub(crate) fn depth(&self) -> usize {
-        let pieces_of_first = self.owners.iter().filter(|&&k| k == 0).count();
-        (pieces_of_first.trailing_zeros() / 2) as usize
+        self.depth
     }
 
     /// The pieces.

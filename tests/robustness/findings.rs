@@ -5,7 +5,9 @@
 
 use revolve::bernstein::{bernstein, binomial};
 use revolve::nalgebra::{Point2, Point3, Vector2, Vector3};
-use revolve::{Bezier, Intersect, Nurbs, RationalBezier, Ray, Revolution};
+use revolve::{
+    BSplineSurface, Bezier, Intersect, Nurbs, NurbsSurface, RationalBezier, Ray, Revolution,
+};
 use std::sync::mpsc;
 use std::thread;
 use std::time::Duration;
@@ -1010,4 +1012,163 @@ fn a_needle_is_hit_from_afar() {
     );
     let before = (aimed - hit.point).dot(&dir.normalize());
     assert!((-1e-9..=3e-4).contains(&before), "{before:e}: {hit:?}");
+}
+
+/// Fuzz finding: a NURBS surface whose `u` domain is two ulps wide (and
+/// whose `v` domain is 1e-27 wide at 4.7e-25) gave a hit 4.6e-5 off the
+/// ray, about 3% of its size. The search found the root on its piece, but
+/// the hit's point was `S(u, v)` at the rounded `u`, which can take only
+/// three values. The point now comes from the piece at the hit's own
+/// parameters on it; `S(uv)` is as near as the rounding of `uv` allows.
+#[test]
+fn a_domain_two_ulps_wide_is_hit_on_the_ray() {
+    let a = 0.2748144448682426;
+    let b = a + 2.0 * f64::EPSILON * 0.25;
+    assert!(b > a && b - a <= 2.0 * 5.56e-17, "a domain two ulps wide");
+    let (c, d) = (4.7e-25, 4.7e-25 + 1e-27);
+    let q = |x: f64, y: f64, z: f64| Point3::new(x, y, z) * 1e-3;
+    let grid = vec![
+        vec![q(0.0, 0.0, 0.0), q(0.5, 0.9, 0.1), q(1.0, 0.1, 0.3)],
+        vec![q(0.1, 0.2, 1.0), q(0.6, 1.1, 0.7), q(1.2, 0.4, 0.9)],
+    ];
+    let weights = vec![vec![1.0, 2.0, 1.0], vec![1.0, 0.5, 1.5]];
+    let s = NurbsSurface::new(
+        (1, 2),
+        (vec![a, a, b, b], vec![c, c, c, d, d, d]),
+        grid,
+        weights,
+    )
+    .expect("the knot rule allows the domain");
+    let mut checked = 0;
+    for (i, &(su, sv)) in [(0.3, 0.4), (0.5, 0.5), (0.7, 0.2), (0.2, 0.8)]
+        .iter()
+        .enumerate()
+    {
+        // The aimed point is the piece's own (the parameters cannot name
+        // it), from the control net by de Casteljau in the test: the
+        // surface at (su, sv) of its local parameters.
+        let at = |x: f64, y: f64| nurbs_point_at_local(&s, (x, y));
+        let target = at(su, sv);
+        // Along the normal (central differences), tilted a little: the
+        // ray crosses the surface once.
+        let h = 1e-6;
+        let normal = (at(su + h, sv) - at(su - h, sv)).cross(&(at(su, sv + h) - at(su, sv - h)));
+        let tilt = Vector3::new(0.1, -0.05 * i as f64, 0.07);
+        let dir = (-normal.normalize() + tilt) * 1e-74;
+        let origin = target - dir * (2e5 * 1.3e-3 / dir.norm());
+        let ray = Ray::new(origin, dir);
+        let hit = s
+            .intersect(&ray, 0.0, f64::INFINITY)
+            .expect("the ray crosses the surface at the aimed point");
+        let reach = (target - origin).norm();
+        let off = (ray.at(hit.t) - hit.point).norm();
+        assert!(off <= 1e-9 * reach, "{off:e} off the ray: {hit:?}");
+        assert!(
+            (hit.point - target).norm() <= 1e-9 * reach,
+            "{hit:?} not at {target:?}"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 4);
+}
+
+/// The point at local parameters `(s, t) ∈ [0, 1]²` of a one-patch NURBS
+/// surface, from its control net and weights by rational de Casteljau
+/// (an evaluation independent of the crate's).
+fn nurbs_point_at_local(s: &NurbsSurface, (a, b): (f64, f64)) -> Point3<f64> {
+    let (grid, weights) = (s.points(), s.weights());
+    let casteljau = |row: Vec<nalgebra::Vector4<f64>>, x: f64| {
+        let mut row = row;
+        while row.len() > 1 {
+            row = row
+                .windows(2)
+                .map(|w| w[0] * (1.0 - x) + w[1] * x)
+                .collect();
+        }
+        row[0]
+    };
+    let columns: Vec<_> = grid
+        .iter()
+        .zip(weights)
+        .map(|(row, ws)| {
+            let h = row
+                .iter()
+                .zip(ws)
+                .map(|(p, &w)| (p.coords * w).push(w))
+                .collect();
+            casteljau(h, b)
+        })
+        .collect();
+    let h = casteljau(columns, a);
+    Point3::from(h.xyz() / h.w)
+}
+
+/// Fuzz finding: a B-spline surface of degrees (1, 0) whose `u` domain is
+/// one ulp wide answered `nearest_point` with a point 0.103 away where the
+/// surface comes within 0.0207: the search found the nearest point, but
+/// the answer's point was `S(uv)` at the rounded `u` (one of the domain's
+/// two values). The same cause, at 1e100 (`u` near 4.5e6 on a narrow
+/// span), made B-spline and NURBS surfaces answer far from the nearest. The
+/// point now comes from the patch at the exact parameters.
+#[test]
+fn a_domain_one_ulp_wide_gives_the_nearest_point() {
+    let p3 = Point3::new;
+    let rows = vec![
+        vec![
+            p3(
+                0.032206627734680845,
+                -0.08917492107357647,
+                0.10610963109042792,
+            ),
+            p3(
+                0.06666674579160199,
+                -0.0681017955751101,
+                -0.006661805483986612,
+            ),
+        ],
+        vec![
+            p3(
+                -0.0501645827645565,
+                0.04215702793889305,
+                -0.07217209192385775,
+            ),
+            p3(
+                0.0726505664549638,
+                -0.12096406787843457,
+                -0.00022117700619190574,
+            ),
+        ],
+    ];
+    let u_knots = vec![
+        0.25869347655625263,
+        0.25869347655625274,
+        0.2586934765562528,
+        0.25869347655625285,
+    ];
+    let s = BSplineSurface::new(
+        (1, 0),
+        (u_knots, vec![0.0, 0.7282327575196106, 1.0]),
+        rows.clone(),
+    )
+    .unwrap();
+    let q = p3(
+        0.01438878545314231,
+        -0.03699414014718982,
+        0.019295896286497378,
+    );
+    // Degree 0 in v: the surface is two segments, rows[0][j] to rows[1][j];
+    // the nearest point of a segment in closed form.
+    let to_segment = |a: Point3<f64>, b: Point3<f64>| {
+        let d = b - a;
+        let x = ((q - a).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+        (a + d * x - q).norm()
+    };
+    let expected = to_segment(rows[0][0], rows[1][0]).min(to_segment(rows[0][1], rows[1][1]));
+    let near = s.nearest_point(&q).unwrap();
+    assert!(near.certified);
+    assert!(
+        (near.distance - expected).abs() <= 1e-15,
+        "{near:?}, expected {expected}"
+    );
+    assert!(((near.point - q).norm() - near.distance).abs() <= 1e-16);
 }
