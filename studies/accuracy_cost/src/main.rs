@@ -37,6 +37,10 @@
 //! and its tessellations in parry, against a reference certified in
 //! interval arithmetic ([`reference::PatchReference`]).
 //!
+//! Beside the nearest hit, the other queries ([`queries`]): every hit
+//! along a ray, occlusion and the nearest point, timed against
+//! `intersect` on every shape.
+//!
 //! Writes `report.md` (the tables), `intersection.svg` (median error
 //! against rays/s, log–log, one series per method, a panel per shape),
 //! `intersection_max.svg` (the same for the maximum error), the same two for
@@ -54,6 +58,7 @@ mod mesh_baseline;
 mod model;
 mod patch_study;
 mod plot;
+mod queries;
 mod reference;
 mod report;
 mod study;
@@ -139,12 +144,14 @@ fn run(args: &Args) -> std::io::Result<()> {
         println!("wrote {}", f.display());
     }
     println!("in {:.1} s", start.elapsed().as_secs_f64());
-    let differences = results.batch_differences();
+    let mut differences = results.batch_differences();
+    differences.extend(results.query_disagreements());
     if differences.is_empty() {
         Ok(())
     } else {
         Err(std::io::Error::other(format!(
-            "the batch path's hits differ from the single path's: {}",
+            "the batch path's hits differ from the single path's, or the queries from \
+             intersect: {}",
             differences.join("; ")
         )))
     }

@@ -4,10 +4,11 @@ use crate::curves::{self, CurvePoint};
 use crate::model::Row;
 use crate::patch_study::{self, PatchShape};
 use crate::plot::{self, Panel, Series};
+use crate::queries::{self, QueryRow};
 use crate::study::{self, Cases, Plan, Shape};
 use crate::table;
 use indicatif::ProgressBar;
-use revolve::{Curve, Intersect, Revolution};
+use revolve::{BezierPatches, Curve, Intersect, Revolution};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -43,6 +44,8 @@ pub struct Results {
     pub shapes: Vec<ShapeSummary>,
     pub rows: Vec<Row>,
     pub curves: Vec<CurvePoint>,
+    /// The other queries, one row per shape.
+    pub queries: Vec<QueryRow>,
 }
 
 impl Results {
@@ -66,6 +69,21 @@ impl Results {
             })
             .collect()
     }
+
+    /// The shapes whose queries disagree with `intersect` on some ray, as
+    /// `"shape: queries disagree on n of N rays"` (empty when none does).
+    pub fn query_disagreements(&self) -> Vec<String> {
+        self.queries
+            .iter()
+            .filter(|q| q.disagreements > 0)
+            .map(|q| {
+                format!(
+                    "{}: queries disagree with intersect on {} of {} rays",
+                    q.shape, q.disagreements, q.rays
+                )
+            })
+            .collect()
+    }
 }
 
 /// Runs the intersection study on every shape (the vase, the wine glass,
@@ -77,6 +95,7 @@ pub fn collect(plan: &Plan, quick: bool, bar: &ProgressBar) -> Results {
         shapes: Vec::new(),
         rows: Vec::new(),
         curves: Vec::new(),
+        queries: Vec::new(),
     };
     shape(&study::vase(), plan, bar, &mut results);
     shape(&study::wine_glass(), plan, bar, &mut results);
@@ -111,6 +130,17 @@ fn shape<C: Curve<2> + Clone>(
         bar.inc(1);
     });
     results.rows.extend(rows);
+    bar.set_message(format!("{}: queries", shape.name));
+    let surface = Revolution::new(shape.profile.clone());
+    let seed = 0xACC0 + results.queries.len() as u64;
+    results.queries.push(queries::measure(
+        shape.name,
+        &surface,
+        &|p| surface.nearest_point(p),
+        (&rays, plan.rays),
+        plan.repeats,
+        seed,
+    ));
 }
 
 fn patch_shape(shape: &PatchShape, plan: &Plan, bar: &ProgressBar, results: &mut Results) {
@@ -125,6 +155,33 @@ fn patch_shape(shape: &PatchShape, plan: &Plan, bar: &ProgressBar, results: &mut
         bar.inc(1);
     });
     results.rows.extend(rows);
+    bar.set_message(format!("{}: queries", shape.name));
+    let seed = 0xACC0 + results.queries.len() as u64;
+    let sizes = (rays.as_slice(), plan.rays);
+    // One patch as a `BezierSurface`, a model as `BezierPatches`.
+    let row = match shape.patches.as_slice() {
+        [one] => queries::measure(
+            shape.name,
+            one,
+            &|p| one.nearest_point(p),
+            sizes,
+            plan.repeats,
+            seed,
+        ),
+        many => {
+            let model =
+                BezierPatches::new(many.to_vec()).expect("the study's patches form a model");
+            queries::measure(
+                shape.name,
+                &model,
+                &|p| model.nearest_point(p),
+                sizes,
+                plan.repeats,
+                seed,
+            )
+        }
+    };
+    results.queries.push(row);
 }
 
 /// Records how a shape's rays went.
@@ -331,9 +388,46 @@ pub fn markdown(results: &Results, plan: &Plan) -> String {
     md.push_str(&table::intersection_table(&of_kind(true)));
     md.push_str("\n![median error against rays/s](intersection_patches.svg)\n\n");
     md.push_str("![maximum error against rays/s](intersection_patches_max.svg)\n\n");
+    md.push_str(&queries_section(&results.queries));
     md.push_str("## Curves\n\n");
     md.push_str(&table::curve_table(&results.curves));
     md.push_str("\n![deviation against samples](curves.svg)\n");
+    md
+}
+
+/// The queries' section: the table and how it was measured.
+fn queries_section(rows: &[QueryRow]) -> String {
+    let mut md = String::from(
+        "## Every hit, occlusion, the nearest point\n\n\
+         The shape's own rays (the default tolerance, `t` in `(0, 100)`): `intersect_all` \
+         (every hit, in order) and `occluded` (is there a hit) per ray, against \
+         `intersect`; their answers are checked against `intersect`'s on every ray (the \
+         first of every hit is the nearest, `occluded` is whether there is one; a \
+         disagreement fails the run). `nearest_point` from random points in the shape's \
+         box grown by half its size on every side. Times are medians of the passes, on \
+         one thread.\n\n\
+         | shape | `intersect` | `intersect_all` | hits a ray | `occluded` | disagreements | \
+         `nearest_point` | certified |\n\
+         |---|---|---|---|---|---|---|---|\n",
+    );
+    for q in rows {
+        let micro = |s: f64| format!("{:.2} µs", s * 1e6);
+        let ratio = |s: f64| format!("{} ({:.2}×)", micro(s), s / q.intersect);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.2} | {} | {} | {} | {} of {} |",
+            q.shape,
+            micro(q.intersect),
+            ratio(q.all),
+            q.hits as f64 / q.rays.max(1) as f64,
+            ratio(q.occluded),
+            q.disagreements,
+            micro(q.nearest),
+            q.certified,
+            q.points
+        );
+    }
+    md.push('\n');
     md
 }
 
@@ -414,6 +508,21 @@ mod tests {
         let svg = std::fs::read_to_string(dir.join("intersection_patches.svg")).unwrap();
         assert!(svg.contains("teapot") && !svg.contains("NaN"));
         assert!(md.contains("## Curves"));
+        // The queries: one row per shape, every answer agreeing with
+        // `intersect`, a nearest point for every query point.
+        assert_eq!(results.queries.len(), SHAPES + PATCH_SHAPES);
+        for q in &results.queries {
+            assert_eq!(
+                (q.rays, q.points, q.disagreements),
+                (plan.rays, plan.rays, 0),
+                "{q:?}"
+            );
+            assert!(q.intersect > 0.0 && q.all > 0.0 && q.occluded > 0.0 && q.nearest > 0.0);
+            assert_eq!(q.certified, q.points, "{q:?}");
+        }
+        assert!(results.query_disagreements().is_empty());
+        assert!(md.contains("| teapot | "));
+        assert!(md.contains("## Every hit, occlusion, the nearest point"));
         let svg = std::fs::read_to_string(dir.join("intersection.svg")).unwrap();
         assert!(svg.contains("course Newton") && !svg.contains("NaN"));
         std::fs::remove_dir_all(&dir).unwrap();
@@ -443,6 +552,7 @@ mod tests {
                 row("revolve exact, batches of 8", Some(0)),
             ],
             curves: Vec::new(),
+            queries: Vec::new(),
         };
         assert!(results.batch_differences().is_empty());
         let md = markdown(&results, &Plan::quick());
@@ -457,6 +567,38 @@ mod tests {
             "bit for bit: **DIFFERENT** (the run fails): vase, revolve exact, batches of 8, \
              tol 1e-6: 3 of 2000 rays."
         ));
+    }
+
+    /// A shape whose queries disagree with `intersect` is named (and
+    /// `main` then fails).
+    #[test]
+    fn query_disagreements_are_reported() {
+        let row = QueryRow {
+            shape: "teapot",
+            rays: 2000,
+            hits: 2500,
+            intersect: 1e-6,
+            all: 2e-6,
+            occluded: 0.9e-6,
+            disagreements: 0,
+            points: 2000,
+            nearest: 2e-5,
+            certified: 2000,
+        };
+        let mut results = Results {
+            shapes: Vec::new(),
+            rows: Vec::new(),
+            curves: Vec::new(),
+            queries: vec![row],
+        };
+        assert!(results.query_disagreements().is_empty());
+        let md = markdown(&results, &Plan::quick());
+        assert!(md.contains("| teapot | 1.00 µs | 2.00 µs (2.00×) | 1.25 | 0.90 µs (0.90×) | 0 |"));
+        results.queries[0].disagreements = 2;
+        assert_eq!(
+            results.query_disagreements(),
+            ["teapot: queries disagree with intersect on 2 of 2000 rays"]
+        );
     }
 
     #[test]

@@ -33,7 +33,7 @@ use rayon::prelude::*;
 /// Rays start this far along `dir` (unit) from the target point, times the
 /// box diagonal; every method searches `(0, T_MAX)`.
 const START: f64 = 2.0;
-const T_MAX: f64 = 100.0;
+pub const T_MAX: f64 = 100.0;
 
 /// How big a run is.
 #[derive(Debug, Clone, PartialEq)]
