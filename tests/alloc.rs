@@ -341,7 +341,8 @@ fn surfaces_hold_heap_in_proportion_to_their_profiles() {
 
 /// Rational revolutions (a NURBS half circle: the unit sphere; a NURBS
 /// circle off the axis: a torus) hold little heap, and intersecting a ray
-/// with them allocates nothing.
+/// with them allocates nothing (nor do every hit, into a vector with room,
+/// and occlusion).
 #[test]
 fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
     use revolve::nalgebra::{Point2, Vector3};
@@ -355,6 +356,8 @@ fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
     for surface in [Revolution::new(half()), Revolution::new(ring())] {
         let bounds = surface.bounds();
         let mut hits = 0;
+        // Every hit into the caller's vector: no allocation once it has room.
+        let mut all = Vec::with_capacity(16);
         for _ in 0..500 {
             let dir: Vector3<f64> = rng.direction();
             let ray = Ray::new(rng.point_in(&bounds) - dir * 4.0, dir);
@@ -362,6 +365,11 @@ fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
             let count = allocations_in(|| hit = surface.intersect(&ray, 0.0, f64::INFINITY));
             assert_eq!(count, 0, "{ray:?}");
             hits += usize::from(hit.is_some());
+            let count =
+                allocations_in(|| surface.intersect_all(&ray, 0.0, f64::INFINITY, &mut all));
+            assert_eq!((count, all.first().copied()), (0, hit), "{ray:?}");
+            let count = allocations_in(|| black_box(surface.occluded(&ray, 0.0, f64::INFINITY)));
+            assert_eq!(count, 0, "{ray:?}");
         }
         assert!(hits > 100, "only {hits} hits");
     }
@@ -372,7 +380,8 @@ fn rational_revolutions_are_small_and_do_not_allocate_per_ray() {
 /// nets of 16 homogeneous points with their projection certificates, about
 /// 0.8 KiB each with their share of the hierarchy), hold at most 2 MiB
 /// (the budget the speed work set itself; 1.7 MB today), and a ray through
-/// the model allocates nothing.
+/// the model allocates nothing (nor do every hit, into a vector with room,
+/// and occlusion).
 #[test]
 fn the_teapot_model_is_small_and_does_not_allocate_per_ray() {
     use revolve::nalgebra::Vector3;
@@ -383,6 +392,7 @@ fn the_teapot_model_is_small_and_does_not_allocate_per_ray() {
     let bounds = model.bounds();
     let mut rng = common::Rng(31);
     let mut hits = 0;
+    let mut all = Vec::with_capacity(16);
     for _ in 0..500 {
         let dir: Vector3<f64> = rng.direction();
         let ray = Ray::new(rng.point_in(&bounds) - dir * 10.0, dir);
@@ -390,6 +400,10 @@ fn the_teapot_model_is_small_and_does_not_allocate_per_ray() {
         let count = allocations_in(|| hit = model.intersect(&ray, 0.0, f64::INFINITY));
         assert_eq!(count, 0, "{ray:?}");
         hits += usize::from(hit.is_some());
+        let count = allocations_in(|| model.intersect_all(&ray, 0.0, f64::INFINITY, &mut all));
+        assert_eq!((count, all.first().copied()), (0, hit), "{ray:?}");
+        let count = allocations_in(|| black_box(model.occluded(&ray, 0.0, f64::INFINITY)));
+        assert_eq!(count, 0, "{ray:?}");
     }
     assert!(hits > 100, "only {hits} hits");
 }
