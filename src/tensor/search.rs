@@ -484,6 +484,17 @@ pub(super) fn clip_search(
                     let c = work[i * cols + j];
                     nearest.offer(corner_hit(patch, k, c, (s_at, t_at), dn));
                 }
+                // Corners on both sides of the floor: hits lie just past
+                // it, and none can be nearer than the floor.
+                let floor = (t_floor * dn, frame.acceptance.distance);
+                // (The best may be another piece's: then this one has
+                // nothing nearer by more than the acceptance either.)
+                if let Some((c, st)) = hit_past_floor(work, (p, q), &cell, floor) {
+                    nearest.offer(corner_hit(patch, k, c, st, dn));
+                    if (nearest.t_best - t_floor) * dn <= floor.1 {
+                        return nearest.hit;
+                    }
+                }
             }
             let split_s = ws >= wt;
             halve(work, spare, p, q, split_s);
@@ -671,6 +682,94 @@ fn extent(coef: &[[f64; 4]], noise: f64) -> f64 {
 fn lateral(coef: &[[f64; 4]]) -> f64 {
     coef.iter()
         .fold(0.0_f64, |m, c| m.max(c[0].hypot(c[1]) / c[3]))
+}
+
+/// A side of a box for [`hit_past_floor`]: its control points (the first
+/// `count`), and the parameters `(s, t)` of its two ends.
+type Side = ([[f64; 4]; 8], usize, (f64, f64), (f64, f64));
+
+/// In a box all of whose image lies within the acceptance of the ray
+/// (coefficients `work`, degrees `(p, q)`), a point just past the floor
+/// `floor.0` along the ray: where two adjacent corners lie on either side
+/// of it, the side between them crosses it, and by continuity has points
+/// just past it, every one a hit. Bisection along that side (de Casteljau
+/// on its control points) brackets the crossing until the point past it
+/// is within `floor.1` (the acceptance) of it, or 64 halvings. Returns the
+/// point's homogeneous coefficients and its `(s, t)` in the patch, or
+/// `None` if no side crosses the floor.
+///
+/// A ray that starts on a surface lying along it (within the acceptance
+/// everywhere, as a needle at 1e100 can be) would otherwise halve every
+/// box along the floor's level curve down to the smallest size, each
+/// finished by Newton's method: seconds a ray.
+fn hit_past_floor(
+    work: &[[f64; 4]],
+    (p, q): (usize, usize),
+    cell: &SearchBox,
+    (floor, accept): (f64, f64),
+) -> Option<([f64; 4], (f64, f64))> {
+    let cols = q + 1;
+    let along = |c: &[f64; 4]| c[2] / c[3];
+    // The four sides: control points, and the parameters of their ends.
+    let side = |k: usize| -> Side {
+        let mut pts = [[0.0; 4]; 8];
+        let (n, start, end) = match k {
+            0 => (cols, (cell.s.0, cell.t.0), (cell.s.0, cell.t.1)),
+            1 => (cols, (cell.s.1, cell.t.0), (cell.s.1, cell.t.1)),
+            2 => (p + 1, (cell.s.0, cell.t.0), (cell.s.1, cell.t.0)),
+            _ => (p + 1, (cell.s.0, cell.t.1), (cell.s.1, cell.t.1)),
+        };
+        for (m, pt) in pts.iter_mut().enumerate().take(n.min(8)) {
+            *pt = match k {
+                0 => work[m],
+                1 => work[p * cols + m],
+                2 => work[m * cols],
+                _ => work[m * cols + q],
+            };
+        }
+        (pts, n, start, end)
+    };
+    for k in 0..4 {
+        let (pts, n, start, end) = side(k);
+        if n > 8 {
+            continue;
+        }
+        let point_at = |x: f64| {
+            let mut c = pts;
+            for level in 1..n {
+                for m in 0..n - level {
+                    let next = c[m + 1];
+                    for (a, b) in c[m].iter_mut().zip(next) {
+                        *a = *a * (1.0 - x) + b * x;
+                    }
+                }
+            }
+            c[0]
+        };
+        let (first, last) = (along(&pts[0]), along(&pts[n - 1]));
+        // The end at or before the floor, and the one past it.
+        let (mut before, mut past) = match (first <= floor, last <= floor) {
+            (true, false) => (0.0, 1.0),
+            (false, true) => (1.0, 0.0),
+            _ => continue,
+        };
+        let mut c = point_at(past);
+        for _ in 0..64 {
+            if along(&c) - floor <= accept {
+                break;
+            }
+            let mid = 0.5 * (before + past);
+            let m = point_at(mid);
+            if along(&m) <= floor {
+                before = mid;
+            } else {
+                (past, c) = (mid, m);
+            }
+        }
+        let at = |a: f64, b: f64| a + (b - a) * past;
+        return Some((c, (at(start.0, end.0), at(start.1, end.1))));
+    }
+    None
 }
 
 /// The sub-range `r` (of `[0, 1]`) of the interval `x`.

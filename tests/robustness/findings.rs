@@ -6,7 +6,8 @@
 use revolve::bernstein::{bernstein, binomial};
 use revolve::nalgebra::{Point2, Point3, Vector2, Vector3};
 use revolve::{
-    BSplineSurface, Bezier, Intersect, Nurbs, NurbsSurface, RationalBezier, Ray, Revolution,
+    BSplineSurface, Bezier, BezierPatches, BezierSurface, Intersect, Nurbs, NurbsSurface,
+    RationalBezier, Ray, Revolution,
 };
 use std::sync::mpsc;
 use std::thread;
@@ -1171,4 +1172,56 @@ fn a_domain_one_ulp_wide_gives_the_nearest_point() {
         "{near:?}, expected {expected}"
     );
     assert!(((near.point - q).norm() - near.distance).abs() <= 1e-16);
+}
+
+/// Fuzz finding: a biquadratic patch reaching ±1e100 along `x` but only
+/// about 1e10 across (a needle, its lateral extent far below the
+/// acceptance at that scale), with a ray starting on it and running along
+/// it, took 1.6 s: every point past the ray's own start is a hit, and the
+/// search halved every box along the level curve of the ray's floor down
+/// to the smallest size, each finished by Newton's method. A box within
+/// the acceptance of the ray whose corners lie on both sides of the floor
+/// now yields a hit just past it by bisection along a side, and the search
+/// stops there (nothing can be nearer).
+#[test]
+fn a_needle_along_the_ray_at_1e100_returns_promptly() {
+    let q = Point3::new;
+    let a = q(3344267360.773488, 5809427743.485777, -4130974820.203802);
+    let grid = vec![
+        vec![a, a, a],
+        vec![
+            q(9.999999999999992e99, -2663380431.867152, -45942008.28573748),
+            q(-2258800067.1823826, 2244147702.6912947, 5651436938.547819),
+            q(-5670470222.918038, -2086279307.3481603, -1804428974.5726795),
+        ],
+        vec![
+            q(-340334219.890193, -5886480264.733659, -3823716318.7943897),
+            q(
+                -9.999999999999998e99,
+                -1564491868.5584447,
+                -5157201007.562006,
+            ),
+            q(4466080322.776343, -991946783.5299281, 340871609.7263082),
+        ],
+    ];
+    let ray = Ray::new(
+        q(
+            -4.180401979133938,
+            -1.3413400257518013,
+            -3.764885287260083e-51,
+        ),
+        Vector3::new(41311717843.1679, -0.570846587562519, -2.0427560303904286),
+    );
+    let (hit, seconds) = returns_within(20, move || {
+        let model = BezierPatches::new(vec![BezierSurface::new(grid).unwrap()]).unwrap();
+        let start = std::time::Instant::now();
+        let hit = model.intersect_patch(&ray, 0.0, f64::INFINITY);
+        (hit, start.elapsed().as_secs_f64())
+    });
+    // 80 µs now (1.6 s before): the fuzzer's mark of a slow call is 1 s.
+    assert!(seconds < 0.5, "{seconds} s");
+    let (_, hit) = hit.expect("the ray starts on the needle and runs along it");
+    // Within the acceptance of the ray (the needle's whole width is).
+    let off = (ray.at(hit.t) - hit.point).norm();
+    assert!(off <= 1e-9 * 1e100, "{off:e}: {hit:?}");
 }
