@@ -13,6 +13,7 @@ mod bspline_surface;
 mod clip;
 mod control_net;
 mod distance_bound;
+mod grid_constructors;
 mod krawczyk;
 mod nearest;
 mod nearest_newton;
@@ -21,8 +22,10 @@ mod nurbs_surface;
 mod patch;
 mod patch_table;
 mod projection_certificate;
+mod ruled;
 mod search;
 mod search_pieces;
+mod sweep;
 mod tessellate;
 
 pub use bezier_patches::BezierPatches;
