@@ -14,6 +14,7 @@ mod clip;
 mod control_net;
 mod distance_bound;
 mod grid_constructors;
+mod isocurve;
 mod krawczyk;
 mod nearest;
 mod nearest_newton;
@@ -25,6 +26,8 @@ mod projection_certificate;
 mod ruled;
 mod search;
 mod search_pieces;
+mod surface_split;
+mod surface_transform;
 mod sweep;
 mod tessellate;
 

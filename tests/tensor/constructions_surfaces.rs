@@ -454,7 +454,258 @@ fn sweep_errors_from_the_grid() {
     assert!(matches!(e, Error::WeightRatioTooLarge { .. }), "{e:?}");
 }
 
-#[allow(dead_code)]
+// ---------------------------------------------------------------------------
+// Isocurves, splits and affine maps
+// ---------------------------------------------------------------------------
+
+/// Random surfaces of every kind: a Bézier surface, a clamped B-spline
+/// surface with interior (one double) knots, a uniform (unclamped) one, and
+/// NURBS on both with random weights, each also reversed.
+fn random_splines(seed: u64) -> (Vec<BezierSurface>, Vec<BSplineSurface>, Vec<NurbsSurface>) {
+    let mut rng = Rng(seed);
+    let mut beziers = Vec::new();
+    let mut splines = Vec::new();
+    let mut nurbs = Vec::new();
+    for (rows, cols, p, q) in [(4, 3, 3, 2), (6, 5, 2, 3), (5, 7, 1, 2), (7, 4, 3, 1)] {
+        let g = rng.grid(rows, cols);
+        beziers.push(BezierSurface::new(rng.grid(p + 1, q + 1)).unwrap());
+        let ku = common::random_tensors::clamped_knots(&mut rng, p, rows);
+        let kv = common::random_tensors::clamped_knots(&mut rng, q, cols);
+        let clamped = BSplineSurface::new((p, q), (ku.clone(), kv.clone()), g.clone()).unwrap();
+        let uniform = BSplineSurface::uniform((p, q), g.clone()).unwrap();
+        let w = rng.weights(rows, cols);
+        nurbs.push(NurbsSurface::new((p, q), (ku, kv), g.clone(), w.clone()).unwrap());
+        nurbs.push(
+            NurbsSurface::new(
+                (p, q),
+                (uniform.knots().0.to_vec(), uniform.knots().1.to_vec()),
+                g,
+                w,
+            )
+            .unwrap()
+            .reversed(),
+        );
+        splines.push(clamped);
+        splines.push(uniform.reversed());
+    }
+    (beziers, splines, nurbs)
+}
+
+/// The parameters to test in a domain: spread ones, the ends, and the
+/// interior knots.
+fn test_params(domain: (f64, f64), knots: &[f64]) -> Vec<f64> {
+    let mut t: Vec<f64> = params(domain, 13).collect();
+    t.extend(
+        knots
+            .iter()
+            .copied()
+            .filter(|&k| k > domain.0 && k < domain.1),
+    );
+    t
+}
+
+/// Checks the isocurves of `s` against its points.
+fn check_isocurves<S: Surface>(
+    s: &S,
+    knots: (&[f64], &[f64]),
+    iso_u: impl Fn(f64) -> Result<Nurbs<3>, Error>,
+    iso_v: impl Fn(f64) -> Result<Nurbs<3>, Error>,
+) {
+    let [du, dv] = s.domain();
+    let size = 10.0;
+    for u in test_params(du, knots.0) {
+        let c = iso_u(u).unwrap();
+        assert_eq!(c.domain(), dv);
+        for v in test_params(dv, knots.1) {
+            assert!(close(c.eval(v), s.eval(u, v), 1e-14 * size), "{u} {v}");
+        }
+    }
+    for v in test_params(dv, knots.1) {
+        let c = iso_v(v).unwrap();
+        assert_eq!(c.domain(), du);
+        for u in test_params(du, knots.0) {
+            assert!(close(c.eval(u), s.eval(u, v), 1e-14 * size), "{u} {v}");
+        }
+    }
+    // Errors name the direction and the domain.
+    for bad in [f64::NAN, du.0 - 1.0, du.1 + 1e-9, f64::INFINITY] {
+        let e = iso_u(bad).unwrap_err();
+        assert!(
+            matches!(e, Error::SurfaceParameterOutOfDomain { direction: ParameterDirection::U, domain, .. } if domain == du),
+            "{e:?}"
+        );
+    }
+    for bad in [f64::NAN, dv.0 - 1e-9, dv.1 + 2.0, f64::NEG_INFINITY] {
+        let e = iso_v(bad).unwrap_err();
+        assert!(
+            matches!(e, Error::SurfaceParameterOutOfDomain { direction: ParameterDirection::V, domain, .. } if domain == dv),
+            "{e:?}"
+        );
+    }
+}
+
+#[test]
+fn isocurves_equal_the_surface_at_fixed_parameters() {
+    let (beziers, splines, nurbs) = random_splines(5);
+    let bk = |n: usize| -> Vec<f64> { [vec![0.0; n + 1], vec![1.0; n + 1]].concat() };
+    for s in &beziers {
+        let (m, n) = s.degrees();
+        check_isocurves(
+            s,
+            (&bk(m), &bk(n)),
+            |u| s.isocurve_u(u),
+            |v| s.isocurve_v(v),
+        );
+    }
+    for s in &splines {
+        check_isocurves(s, s.knots(), |u| s.isocurve_u(u), |v| s.isocurve_v(v));
+        // A polynomial surface's isocurves are polynomial.
+        assert!(
+            s.isocurve_u(s.domain()[0].0)
+                .unwrap()
+                .weights()
+                .iter()
+                .all(|&w| w == 1.0)
+        );
+    }
+    for s in &nurbs {
+        check_isocurves(s, s.knots(), |u| s.isocurve_u(u), |v| s.isocurve_v(v));
+    }
+}
+
+#[test]
+fn isocurves_of_a_cylinder_are_circles_and_lines() {
+    let circle = lift(&Nurbs::circle(Point2::origin(), 1.0).unwrap(), 0.0);
+    let s = NurbsSurface::extrude(&circle, Vector3::new(0.0, 0.0, 2.0)).unwrap();
+    let ring = s.isocurve_v(0.25).unwrap();
+    for u in params((0.0, 1.0), 40) {
+        let p = ring.eval(u);
+        assert!((p.x.hypot(p.y) - 1.0).abs() < 1e-15 && (p.z - 0.5).abs() < 1e-15);
+    }
+    let rule = s.isocurve_u(0.3).unwrap();
+    assert_eq!(rule.degree(), 1);
+    let foot = circle.eval(0.3);
+    for v in params((0.0, 1.0), 5) {
+        assert!(close(
+            rule.eval(v),
+            foot + Vector3::new(0.0, 0.0, 2.0 * v),
+            1e-15
+        ));
+    }
+}
+
+/// Checks that the halves of a spline surface split at `t` in `axis` are
+/// the surface on their parameters, and that the split errors are right.
+fn check_split<S: Surface + Clone + std::fmt::Debug>(
+    s: &S,
+    axis: usize,
+    split: impl Fn(f64) -> Result<(S, S), Error>,
+) {
+    let dom = s.domain();
+    let (a, b) = dom[axis];
+    for f in [0.13, 0.5, 0.77] {
+        let t = a + (b - a) * f;
+        let (left, right) = split(t).unwrap();
+        let (ld, rd) = (left.domain(), right.domain());
+        assert_eq!(
+            (ld[axis].0, ld[axis].1, rd[axis].0, rd[axis].1),
+            (a, t, t, b)
+        );
+        assert_eq!(ld[1 - axis], dom[1 - axis]);
+        let other = dom[1 - axis];
+        for x in params(other, 9) {
+            for g in params((0.0, 1.0), 9) {
+                let (y_left, y_right) = (a + (t - a) * g, t + (b - t) * g);
+                let at = |y: f64| if axis == 0 { (y, x) } else { (x, y) };
+                let (u, v) = at(y_left);
+                assert!(close(left.eval(u, v), s.eval(u, v), 1e-13), "{u} {v}");
+                let (u, v) = at(y_right);
+                assert!(close(right.eval(u, v), s.eval(u, v), 1e-13), "{u} {v}");
+                // Orientation kept.
+                if let (Some(n), Some(m)) = (right.normal(u, v), s.normal(u, v)) {
+                    assert!(n.dot(&m) > 0.99, "{u} {v}");
+                }
+            }
+        }
+    }
+    let direction = if axis == 0 {
+        ParameterDirection::U
+    } else {
+        ParameterDirection::V
+    };
+    for bad in [a, b, f64::NAN, a - 1.0, b + 1.0, b - 1e-17 * b.abs()] {
+        let e = split(bad).unwrap_err();
+        assert!(
+            matches!(e, Error::SplitOutsideDomain { direction: d, domain, .. } if d == direction && domain == (a, b)),
+            "{bad}: {e:?}"
+        );
+    }
+}
+
+#[test]
+fn split_halves_equal_the_surface() {
+    let (beziers, splines, nurbs) = random_splines(9);
+    for s in &splines {
+        check_split(s, 0, |t| s.split_u(t));
+        check_split(s, 1, |t| s.split_v(t));
+        // At an interior knot.
+        let ku: Vec<f64> = s.knots().0.to_vec();
+        let [du, _] = s.domain();
+        if let Some(&k) = ku.iter().find(|&&k| k > du.0 && k < du.1) {
+            let (l, r) = s.split_u(k).unwrap();
+            assert_eq!(l.domain()[0].1, k);
+            assert!(close(l.eval(k, 0.5), r.eval(k, 0.5), 1e-13));
+        }
+    }
+    for s in &nurbs {
+        check_split(s, 0, |t| s.split_u(t));
+        check_split(s, 1, |t| s.split_v(t));
+    }
+    for s in &beziers {
+        for (axis, f) in [(0, 0.3), (1, 0.6)] {
+            let (a, b) = if axis == 0 {
+                s.split_u(f).unwrap()
+            } else {
+                s.split_v(f).unwrap()
+            };
+            assert_eq!(a.degrees(), s.degrees());
+            for x in params((0.0, 1.0), 8) {
+                for g in params((0.0, 1.0), 8) {
+                    let (ya, yb) = (f * g, f + (1.0 - f) * g);
+                    let (sa, sb) = if axis == 0 {
+                        (s.eval(ya, x), s.eval(yb, x))
+                    } else {
+                        (s.eval(x, ya), s.eval(x, yb))
+                    };
+                    let (ea, eb) = if axis == 0 {
+                        (a.eval(g, x), b.eval(g, x))
+                    } else {
+                        (a.eval(x, g), b.eval(x, g))
+                    };
+                    assert!(close(ea, sa, 1e-13) && close(eb, sb, 1e-13));
+                }
+            }
+        }
+        for bad in [0.0, 1.0, f64::NAN, -0.5, 2.0] {
+            assert!(matches!(
+                s.split_u(bad),
+                Err(Error::SplitOutsideDomain {
+                    direction: ParameterDirection::U,
+                    ..
+                })
+            ));
+            assert!(matches!(
+                s.split_v(bad),
+                Err(Error::SplitOutsideDomain {
+                    direction: ParameterDirection::V,
+                    ..
+                })
+            ));
+        }
+    }
+}
+
+/// An affine map from its 3×4 matrix.
 fn affine(m: [[f64; 4]; 3]) -> Affine3<f64> {
     let mut full = Matrix4::identity();
     for (i, row) in m.iter().enumerate() {
@@ -463,4 +714,126 @@ fn affine(m: [[f64; 4]; 3]) -> Affine3<f64> {
         }
     }
     Affine3::from_matrix_unchecked(full)
+}
+
+/// Checks `T(S(u, v)) = S′(u, v)`, `S′_u = L·S_u`, and `N′ ∝ L⁻ᵀN` with the
+/// same orientation.
+fn check_transform<S: Surface>(s: &S, t: &S, map: &Affine3<f64>) {
+    let l = map.matrix().fixed_view::<3, 3>(0, 0).into_owned();
+    let inv_t = l.try_inverse().unwrap().transpose();
+    let [du, dv] = s.domain();
+    assert_eq!(t.domain(), [du, dv]);
+    for u in params(du, 9) {
+        for v in params(dv, 9) {
+            let p = map * s.eval(u, v);
+            assert!(close(t.eval(u, v), p, 1e-13 * (1.0 + p.coords.norm())));
+            let (su, sv) = s.partials(u, v);
+            let (tu, tv) = t.partials(u, v);
+            assert!((tu - l * su).norm() <= 1e-12 * (1.0 + (l * su).norm()));
+            assert!((tv - l * sv).norm() <= 1e-12 * (1.0 + (l * sv).norm()));
+            if let (Some(n), Some(m)) = (s.normal(u, v), t.normal(u, v)) {
+                let want = (inv_t * n.into_inner()).normalize();
+                assert!((m.into_inner() - want).norm() < 1e-9, "{u} {v}");
+            }
+        }
+    }
+}
+
+#[test]
+fn transforms_commute_with_evaluation() {
+    let (beziers, splines, nurbs) = random_splines(13);
+    let maps = [
+        affine([
+            [1.0, 0.0, 0.0, 2.0],
+            [0.0, 1.0, 0.0, -3.0],
+            [0.0, 0.0, 1.0, 0.5],
+        ]),
+        affine([
+            [0.0, -1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ]),
+        affine([
+            [2.0, 0.5, 0.0, 1.0],
+            [0.0, 1.5, 0.3, 0.0],
+            [0.1, 0.0, 0.7, -2.0],
+        ]),
+        // A reflection: the orientation flag turns over.
+        affine([
+            [-1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ]),
+    ];
+    for map in &maps {
+        for s in &beziers {
+            check_transform(s, &s.transformed(map), map);
+        }
+        for s in &splines {
+            let t = s.transformed(map);
+            assert_eq!(t.knots(), s.knots());
+            assert_eq!(t.tolerance(), s.tolerance());
+            check_transform(s, &t, map);
+        }
+        for s in &nurbs {
+            let t = s.transformed(map);
+            assert_eq!(t.weights(), s.weights());
+            check_transform(s, &t, map);
+        }
+    }
+    // The identity changes nothing.
+    let id = Affine3::identity();
+    assert_eq!(nurbs[0].transformed(&id), nurbs[0]);
+    assert_eq!(beziers[0].transformed(&id), beziers[0]);
+}
+
+#[test]
+fn transform_errors() {
+    let (beziers, splines, nurbs) = random_splines(17);
+    let nan = affine([
+        [1.0, f64::NAN, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ]);
+    let inf = affine([
+        [1.0, 0.0, 0.0, f64::INFINITY],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ]);
+    let huge = affine([
+        [1e101, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ]);
+    for map in [&nan, &inf] {
+        assert_eq!(
+            beziers[0].try_transformed(map),
+            Err(Error::NonFiniteTransform)
+        );
+        assert_eq!(
+            splines[0].try_transformed(map),
+            Err(Error::NonFiniteTransform)
+        );
+        assert_eq!(
+            nurbs[0].try_transformed(map),
+            Err(Error::NonFiniteTransform)
+        );
+        // The infallible form leaves the surface as it was.
+        assert_eq!(beziers[0].transformed(map), beziers[0]);
+        assert_eq!(splines[0].transformed(map), splines[0]);
+        assert_eq!(nurbs[0].transformed(map), nurbs[0]);
+    }
+    assert!(matches!(
+        splines[0].try_transformed(&huge),
+        Err(Error::GridCoordinateTooLarge { .. })
+    ));
+    assert!(matches!(
+        nurbs[1].try_transformed(&huge),
+        Err(Error::GridCoordinateTooLarge { .. })
+    ));
+    assert!(matches!(
+        beziers[1].try_transformed(&huge),
+        Err(Error::GridCoordinateTooLarge { .. })
+    ));
+    assert_eq!(nurbs[1].transformed(&huge), nurbs[1]);
 }
