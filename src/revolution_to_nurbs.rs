@@ -4,7 +4,7 @@
 //! This file joins the two surface layers (`revolution/` and `tensor/`,
 //! which do not know each other).
 
-use crate::curve::RationalBezier;
+use crate::curve::RationalBezierSpan;
 use crate::{Curve, Error, NurbsSurface, Revolution};
 use nalgebra::{Point3, Vector2};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI, SQRT_2, TAU};
@@ -55,7 +55,7 @@ fn quarter_parameter(phi: f64) -> f64 {
 
 /// The profile's rational Bézier spans, checked to follow each other
 /// without gaps, all raised to the highest degree.
-fn profile_spans<C: Curve<2>>(profile: &C) -> Result<Vec<((f64, f64), RationalBezier<2>)>, Error> {
+fn profile_spans<C: Curve<2>>(profile: &C) -> Result<Vec<RationalBezierSpan<2>>, Error> {
     let spans = profile
         .rational_bezier_spans()
         .ok_or(Error::NotPiecewiseRational)?;
@@ -85,7 +85,10 @@ fn profile_spans<C: Curve<2>>(profile: &C) -> Result<Vec<((f64, f64), RationalBe
             } else {
                 s.curve
             };
-            Ok((s.knots, curve))
+            Ok(RationalBezierSpan {
+                knots: s.knots,
+                curve,
+            })
         })
         .collect()
 }
@@ -133,7 +136,7 @@ impl NurbsSurface {
     /// spans (whose revolution intersects an approximation);
     /// [`Error::SpanGap`] when a span starts after the previous one ends,
     /// [`Error::SpansOutOfOrder`] when it starts before or is empty; the
-    /// errors of [`RationalBezier::elevate_degree`] and of
+    /// errors of [`RationalBezier::elevate_degree`](crate::RationalBezier::elevate_degree) and of
     /// [`NurbsSurface::new`] on the grid.
     ///
     /// ```
@@ -161,18 +164,18 @@ impl NurbsSurface {
             return Err(e.clone());
         }
         let spans = profile_spans(r.profile())?;
-        let p = spans[0].1.degree();
+        let p = spans[0].curve.degree();
         let mut u_knots = Vec::with_capacity((spans.len() + 1) * (p + 1));
-        u_knots.extend(std::iter::repeat_n(spans[0].0.0, p + 1));
-        for (knots, _) in &spans {
-            u_knots.extend(std::iter::repeat_n(knots.1, p + 1));
+        u_knots.extend(std::iter::repeat_n(spans[0].knots.0, p + 1));
+        for span in &spans {
+            u_knots.extend(std::iter::repeat_n(span.knots.1, p + 1));
         }
         let circle = circle_net();
         let to_world = r.to_world();
         let mut points = Vec::with_capacity(spans.len() * (p + 1));
         let mut weights = Vec::with_capacity(spans.len() * (p + 1));
-        for (_, curve) in &spans {
-            for (q, &w) in curve.points().iter().zip(curve.weights()) {
+        for span in &spans {
+            for (q, &w) in span.curve.points().iter().zip(span.curve.weights()) {
                 points.push(
                     circle
                         .iter()

@@ -28,11 +28,16 @@ use revolve::{
 };
 use std::f64::consts::{FRAC_PI_2, TAU};
 
+/// The revolution's point and normal at `(u, θ)`.
+type PointAndNormal = dyn Fn(f64, f64) -> (Point3<f64>, Option<Unit<Vector3<f64>>>);
+/// The revolution's nearest hit.
+type FirstHit = dyn Fn(&revolve::Ray) -> Option<revolve::Hit>;
+
 /// The four shapes, placed, as boxed surfaces with their NURBS forms.
 struct Case {
     name: &'static str,
-    revolution: Box<dyn Fn(f64, f64) -> (Point3<f64>, Option<Unit<Vector3<f64>>>)>,
-    intersect: Box<dyn Fn(&revolve::Ray) -> Option<revolve::Hit>>,
+    revolution: Box<PointAndNormal>,
+    intersect: Box<FirstHit>,
     domain: (f64, f64),
     breaks: Vec<f64>,
     nurbs: NurbsSurface,
