@@ -837,3 +837,53 @@ fn transform_errors() {
     ));
     assert_eq!(nurbs[1].transformed(&huge), nurbs[1]);
 }
+
+#[test]
+fn new_error_messages_name_the_problem() {
+    let cases = [
+        (
+            Error::FlatGridLength { length: 7, rows: 2 },
+            "a flat list of 7 control values cannot be cut into 2 rows of equal length: the \
+             length must be a non-zero multiple of the rows",
+        ),
+        (
+            Error::SurfaceParameterOutOfDomain {
+                direction: ParameterDirection::V,
+                t: 1.5,
+                domain: (0.0, 1.0),
+            },
+            "the surface's v parameter 1.5 is outside its domain [0, 1]",
+        ),
+        (
+            Error::SplitOutsideDomain {
+                direction: ParameterDirection::U,
+                t: 0.0,
+                domain: (0.0, 2.0),
+            },
+            "cannot split the surface in u at 0: the parameter must lie strictly inside the \
+             domain (0, 2)",
+        ),
+        (
+            Error::InvalidExtrusion {
+                vector: Vector3::zeros(),
+            },
+            "extrusion vector (0, 0, 0) must be finite and non-zero",
+        ),
+        (
+            Error::NonFiniteTransform,
+            "the affine map has a NaN or infinite entry",
+        ),
+        (
+            Error::SpanGap {
+                index: 1,
+                previous_end: 1.0,
+                start: 2.0,
+            },
+            "the profile's Bézier span 1 starts at 2 but the previous one ends at 1: a spline \
+             surface needs spans without gaps",
+        ),
+    ];
+    for (e, want) in cases {
+        assert_eq!(e.to_string(), want);
+    }
+}
