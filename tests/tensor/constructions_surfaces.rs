@@ -887,3 +887,41 @@ fn new_error_messages_name_the_problem() {
         assert_eq!(e.to_string(), want);
     }
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// On a random rational surface: the isocurves through a random
+        /// point pass through it, and the halves of a split at a random
+        /// parameter agree with the surface on their sides.
+        #[test]
+        fn isocurves_and_splits_agree_with_the_surface(
+            seed in 1u64..1_000_000,
+            fu in 0.0f64..=1.0,
+            fv in 0.0f64..=1.0,
+            fs in 0.01f64..0.99,
+        ) {
+            let (_, _, nurbs) = random_splines(seed);
+            for s in &nurbs {
+                let [du, dv] = s.domain();
+                let u = du.0 + (du.1 - du.0) * fu;
+                let v = dv.0 + (dv.1 - dv.0) * fv;
+                let p = s.eval(u, v);
+                prop_assert!(close(s.isocurve_u(u).unwrap().eval(v), p, 1e-13));
+                prop_assert!(close(s.isocurve_v(v).unwrap().eval(u), p, 1e-13));
+                let cut = du.0 + (du.1 - du.0) * fs;
+                let (a, b) = s.split_u(cut).unwrap();
+                let half = if u <= cut { a } else { b };
+                prop_assert!(close(half.eval(u, v), p, 1e-13));
+                let cut = dv.0 + (dv.1 - dv.0) * fs;
+                let (a, b) = s.split_v(cut).unwrap();
+                let half = if v <= cut { a } else { b };
+                prop_assert!(close(half.eval(u, v), p, 1e-13));
+            }
+        }
+    }
+}
