@@ -62,9 +62,9 @@ impl NurbsSurface {
     /// `Σᵢⱼ wᵢωⱼNᵢMⱼ = W·Ω`, and its numerator splits:
     /// `Σᵢⱼ wᵢωⱼNᵢMⱼ(Pᵢ + Tⱼ − T₀) = Ω·Σᵢ wᵢNᵢPᵢ + W·Σⱼ ωⱼMⱼTⱼ − WΩ·T₀`.
     /// Dividing by `WΩ` gives `Σᵢ wᵢNᵢPᵢ/W + Σⱼ ωⱼMⱼTⱼ/Ω − T₀ = P(u) + T(v) − T₀`.
-    /// (Any weights would do this only because every row of the grid is
-    /// the profile translated and every column the path translated: the
-    /// product weights are what make the sums factor.)
+    /// The product weights are what make the sums factor: with other
+    /// weights on the same points the rows would still be translated
+    /// profiles, but the surface would not be their translational sweep.
     ///
     /// # Errors
     /// The errors of [`NurbsSurface::new`] on the grid:
