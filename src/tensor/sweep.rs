@@ -63,8 +63,8 @@ impl NurbsSurface {
     /// `Σᵢⱼ wᵢωⱼNᵢMⱼ(Pᵢ + Tⱼ − T₀) = Ω·Σᵢ wᵢNᵢPᵢ + W·Σⱼ ωⱼMⱼTⱼ − WΩ·T₀`.
     /// Dividing by `WΩ` gives `Σᵢ wᵢNᵢPᵢ/W + Σⱼ ωⱼMⱼTⱼ/Ω − T₀ = P(u) + T(v) − T₀`.
     /// The product weights are what make the sums factor: with other
-    /// weights on the same points the rows would still be translated
-    /// profiles, but the surface would not be their translational sweep.
+    /// weights on the same points the isocurves would in general be
+    /// neither translated profiles nor translated paths.
     ///
     /// # Errors
     /// The errors of [`NurbsSurface::new`] on the grid:
