@@ -379,6 +379,58 @@ pub enum Error {
         /// The number of bytes asked for (saturated at `usize::MAX`).
         bytes: usize,
     },
+
+    // Surface constructions.
+    /// A flat, row-major list of control points (or weights) for a surface
+    /// cannot be cut into `rows` equal rows: its length is not a non-zero
+    /// multiple of `rows` (or `rows` is zero).
+    FlatGridLength {
+        /// The length of the list.
+        length: usize,
+        /// The number of rows asked for.
+        rows: usize,
+    },
+    /// A surface parameter (an isocurve's) is NaN or outside the surface's
+    /// domain in its direction.
+    SurfaceParameterOutOfDomain {
+        /// `u` or `v`.
+        direction: ParameterDirection,
+        /// The parameter given.
+        t: f64,
+        /// The domain in that direction (inclusive).
+        domain: (f64, f64),
+    },
+    /// A surface cannot be split at `t`: a split needs a parameter strictly
+    /// inside the domain in its direction (at an end one half would be
+    /// empty), and `t` is NaN, outside, at an end, or within rounding of an
+    /// end.
+    SplitOutsideDomain {
+        /// `u` or `v`.
+        direction: ParameterDirection,
+        /// The parameter given.
+        t: f64,
+        /// The domain in that direction.
+        domain: (f64, f64),
+    },
+    /// An extrusion (or sweep) direction has a NaN or infinite coordinate,
+    /// or is zero (the surface would have no width).
+    InvalidExtrusion {
+        /// The vector given.
+        vector: nalgebra::Vector3<f64>,
+    },
+    /// An affine map has a NaN or infinite entry.
+    NonFiniteTransform,
+    /// A profile's rational Bézier spans leave a gap: span `index` starts
+    /// after the previous one ends, so no single spline surface follows the
+    /// profile with its own parameter.
+    SpanGap {
+        /// Index of the span after the gap.
+        index: usize,
+        /// Where the previous span ends.
+        previous_end: f64,
+        /// Where span `index` starts.
+        start: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -669,6 +721,55 @@ impl fmt::Display for Error {
             Error::AllocationFailed { bytes } => {
                 write!(f, "could not allocate {bytes} bytes for the result")
             }
+            Error::FlatGridLength { length, rows } => write!(
+                f,
+                "a flat list of {length} control values cannot be cut into {rows} rows of \
+                 equal length: the length must be a non-zero multiple of the rows"
+            ),
+            Error::SurfaceParameterOutOfDomain {
+                direction,
+                t,
+                domain,
+            } => write!(
+                f,
+                "the surface's {direction} parameter {} is outside its domain [{}, {}]",
+                Num(t),
+                Num(domain.0),
+                Num(domain.1)
+            ),
+            Error::SplitOutsideDomain {
+                direction,
+                t,
+                domain,
+            } => write!(
+                f,
+                "cannot split the surface in {direction} at {}: the parameter must lie strictly \
+                 inside the domain ({}, {})",
+                Num(t),
+                Num(domain.0),
+                Num(domain.1)
+            ),
+            Error::InvalidExtrusion { vector } => write!(
+                f,
+                "extrusion vector ({}, {}, {}) must be finite and non-zero",
+                Num(vector.x),
+                Num(vector.y),
+                Num(vector.z)
+            ),
+            Error::NonFiniteTransform => {
+                write!(f, "the affine map has a NaN or infinite entry")
+            }
+            Error::SpanGap {
+                index,
+                previous_end,
+                start,
+            } => write!(
+                f,
+                "the profile's Bézier span {index} starts at {} but the previous one ends at {}: \
+                 a spline surface needs spans without gaps",
+                Num(start),
+                Num(previous_end)
+            ),
         }
     }
 }

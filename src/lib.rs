@@ -122,6 +122,7 @@ mod mesh;
 pub mod prelude;
 pub mod ray;
 pub mod revolution;
+mod revolution_to_nurbs;
 pub mod roots;
 mod scratch;
 #[cfg(feature = "serde")]

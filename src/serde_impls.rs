@@ -9,7 +9,7 @@
 //! | [`BSpline<D>`] | `degree`, `knots`, `points` |
 //! | [`RationalBezier<D>`] | `points`, `weights` |
 //! | [`Nurbs<D>`] | `degree`, `knots`, `points`, `weights` |
-//! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance`, `reversed`² |
+//! | [`Revolution<C>`] | `profile`, `origin`, `axis`, `tolerance`, `reversed`², `turn`³ |
 //! | [`BezierSurface`] | `points` (rows along `u`), `tolerance`¹, `reversed`² |
 //! | [`BezierPatches`] | `patches` (each a [`BezierSurface`]), `tolerance`¹ |
 //! | [`BSplineSurface`] | `degrees`, `knots` (`u`, `v`), `points`, `tolerance`¹, `reversed`² |
@@ -24,6 +24,10 @@
 //! ² The orientation flag of `reversed()`: written (`true`) only for a
 //! reversed surface; absent reads as `false`, so data written before the
 //! flag existed still reads.
+//!
+//! ³ The turn (radians) about the axis that [`Revolution::transformed`]
+//! composes: written only when not 0, absent reads as 0. A moved
+//! revolution reads back to rounding of its composed rotation.
 //!
 //! Points and vectors are sequences of their coordinates (nalgebra's own
 //! serde form). Reading goes through the public constructor
@@ -386,6 +390,15 @@ struct RevolutionData<P> {
     tolerance: Tolerance,
     #[serde(default, skip_serializing_if = "is_false")]
     reversed: bool,
+    /// The turn about the axis of a revolution moved by
+    /// [`Revolution::transformed`] (radians; written only when not 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    turn: f64,
+}
+
+/// Whether an angle is zero (not written).
+fn is_zero(angle: &f64) -> bool {
+    *angle == 0.0
 }
 
 impl<C: Curve<2>> DefiningData for Revolution<C> {
@@ -406,14 +419,21 @@ impl<C: Curve<2>> DefiningData for Revolution<C> {
             axis: *self.scaled_axis(),
             tolerance: *self.tolerance(),
             reversed: self.reversed,
+            turn: self.turn(),
         })
     }
     fn read<E: de::Error>(data: RevolutionData<C>) -> Result<Self, E> {
+        if !data.turn.is_finite() {
+            return Err(E::custom(format_args!(
+                "a revolution's turn about its axis must be a finite angle, not {}",
+                data.turn
+            )));
+        }
         // `try_with_axis` checks the axis itself (finite, not zero) and
         // brings it to unit length.
         Revolution::try_new(data.profile)
             .and_then(|r| r.try_with_axis(data.origin, Unit::new_unchecked(data.axis)))
-            .map(|r| r.with_tolerance(data.tolerance))
+            .map(|r| r.with_tolerance(data.tolerance).with_turn(data.turn))
             .map(|mut r| {
                 r.reversed = data.reversed;
                 r

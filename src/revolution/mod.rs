@@ -22,6 +22,7 @@ mod one_root;
 mod profile_approximation;
 mod profile_refine;
 mod query;
+mod rigid_motion;
 mod select;
 mod span_culling;
 mod span_form;

@@ -107,6 +107,12 @@ pub struct Revolution<C> {
     /// The orientation is reversed ([`reversed`](Revolution::reversed)):
     /// every normal is negated, nothing else changes.
     pub(crate) reversed: bool,
+    /// The angle (radians) of the turn about the local `y` axis that
+    /// `to_world` applies before the placement's shortest rotation: 0
+    /// after [`with_axis`](Revolution::with_axis), any angle after
+    /// [`transformed`](Revolution::transformed) (written by serialization
+    /// when not 0).
+    pub(crate) turn: f64,
 }
 /// The intersector's data for `profile`, and the deviation of the
 /// approximation it was built from if the profile has no Bézier spans;
@@ -207,6 +213,7 @@ impl<C: Curve<2>> Revolution<C> {
             tolerance: Tolerance::default(),
             scaled_axis: Vector3::y(),
             reversed: false,
+            turn: 0.0,
         }
     }
 
@@ -376,28 +383,14 @@ impl<C: Curve<2>> Revolution<C> {
         axis: Unit<Vector3<f64>>,
         given: Unit<Vector3<f64>>,
     ) -> Self {
-        // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
-        // of the dot product loses half the digits there).
-        let y = Vector3::y();
-        let cross = y.cross(&axis);
-        let angle = cross.norm().atan2(y.dot(&axis));
-        // Scaled before normalizing: an axis within 1e-154 of ±y has a
-        // cross product whose squares are subnormal (a norm off by 1e-10).
-        let m = cross.amax();
-        let about = (m > 0.0).then(|| Unit::try_new(cross / m, 0.0)).flatten();
-        let rotation = match about {
-            Some(about) => Rotation3::from_axis_angle(&about, angle),
-            None if angle > 1.0 => {
-                Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
-            }
-            None => Rotation3::identity(),
-        };
+        let rotation = axis_rotation(&axis);
         self.to_world = Isometry3::from_parts(
             Translation3::from(origin.coords),
             UnitQuaternion::from_rotation_matrix(&rotation),
         );
         self.rotation = self.to_world.rotation.to_rotation_matrix();
         self.scaled_axis = given.into_inner() / given.amax();
+        self.turn = 0.0;
         self
     }
 
@@ -453,10 +446,31 @@ impl<C: Curve<2>> Revolution<C> {
     }
 }
 
+/// The shortest rotation taking `y` to the unit `axis` (the half turn
+/// about `x` for `−y`): the rotation of [`Revolution::with_axis`].
+pub(super) fn axis_rotation(axis: &Unit<Vector3<f64>>) -> Rotation3<f64> {
+    // The angle from atan2(|y × a|, y · a), accurate near 0 and π (acos
+    // of the dot product loses half the digits there).
+    let y = Vector3::y();
+    let cross = y.cross(axis);
+    let angle = cross.norm().atan2(y.dot(axis));
+    // Scaled before normalizing: an axis within 1e-154 of ±y has a
+    // cross product whose squares are subnormal (a norm off by 1e-10).
+    let m = cross.amax();
+    let about = (m > 0.0).then(|| Unit::try_new(cross / m, 0.0)).flatten();
+    match about {
+        Some(about) => Rotation3::from_axis_angle(&about, angle),
+        None if angle > 1.0 => Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI),
+        None => Rotation3::identity(),
+    }
+}
 /// The axis of a placement, renormalized (a `Unit` made unchecked may not
 /// be of unit length), if `origin` and `axis` are acceptable (see
 /// [`Revolution::with_axis`]).
-fn placement(origin: Point3<f64>, axis: Unit<Vector3<f64>>) -> Result<Unit<Vector3<f64>>, Error> {
+pub(super) fn placement(
+    origin: Point3<f64>,
+    axis: Unit<Vector3<f64>>,
+) -> Result<Unit<Vector3<f64>>, Error> {
     let limit = crate::MAX_COORDINATE;
     let origin_ok = origin.coords.iter().all(|c| c.abs() <= limit);
     let axis = axis.into_inner();

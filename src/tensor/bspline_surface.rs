@@ -241,6 +241,11 @@ impl BSplineSurface {
     pub(crate) fn core(&self) -> &TensorSpline {
         &self.core
     }
+
+    /// The surface of a core the crate built.
+    pub(super) fn from_core(core: TensorSpline) -> Self {
+        BSplineSurface { core }
+    }
 }
 
 impl Surface for BSplineSurface {
@@ -509,7 +514,7 @@ impl TensorSpline {
 /// The non-empty span `k` (`t_k ≤ t ≤ t_{k+1}`, `p ≤ k < n`) to insert `t`
 /// (inside the domain `[t_p, t_n]`) into: the span holding `t`, or for
 /// `t = t_n` the last non-empty one.
-fn insertion_span(knots: &[f64], p: usize, n: usize, t: f64) -> usize {
+pub(super) fn insertion_span(knots: &[f64], p: usize, n: usize, t: f64) -> usize {
     if t >= knots[n] {
         (p..n).rev().find(|&k| knots[k] < knots[n]).unwrap_or(p)
     } else {

@@ -157,6 +157,11 @@ impl NurbsSurface {
         &self.core
     }
 
+    /// The surface of a core the crate built.
+    pub(super) fn from_core(core: TensorSpline) -> Self {
+        NurbsSurface { core }
+    }
+
     /// The second partial derivatives `(S_uu, S_uv, S_vv)` at `(u, v)`
     /// (clamped into the domain), by the quotient rule.
     pub fn second_partials(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {

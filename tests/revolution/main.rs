@@ -16,3 +16,5 @@ mod own_profiles;
 mod queries;
 mod rational_revolution;
 mod revolution;
+mod rigid_motion;
+mod to_nurbs;
