@@ -49,7 +49,7 @@ impl NurbsSurface {
     /// (circles of linearly varying radius give a cone).
     ///
     /// ```
-    /// use revolve::{Curve, Nurbs, NurbsSurface, Surface};
+    /// use revolve::{Nurbs, NurbsSurface, Surface};
     /// use revolve::nalgebra::Point3;
     ///
     /// // Three straight sections at heights 0, 1, 3: a bilinear sheet.
@@ -60,8 +60,11 @@ impl NurbsSurface {
     /// let curves = [line(0.0, 0.0)?, line(0.5, 1.0)?, line(1.0, 3.0)?];
     /// let s = NurbsSurface::loft(&curves, 2)?;
     /// assert_eq!(s.degrees(), (1, 2));
-    /// assert_eq!(s.eval(0.25, 0.0), Point3::new(0.5, 0.0, 0.0));
-    /// assert_eq!(s.eval(1.0, 1.0), Point3::new(2.0, 1.0, 3.0));
+    /// assert!((s.eval(0.25, 0.0) - Point3::new(0.5, 0.0, 0.0)).norm() < 1e-15);
+    /// assert!((s.eval(1.0, 1.0) - Point3::new(2.0, 1.0, 3.0)).norm() < 1e-15);
+    /// // Between the sections the sheet is bilinear in x, quadratic across.
+    /// let p = s.eval(0.5, 0.5);
+    /// assert!((p.x - 1.0).abs() < 1e-15 && p.z > 0.0 && p.z < 3.0);
     /// # Ok::<(), revolve::Error>(())
     /// ```
     ///
