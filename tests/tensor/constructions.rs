@@ -454,7 +454,7 @@ fn loft_through_incompatible_sections_interpolates_each() {
             Point3::new(-1.0, -1.0, 2.4),
             Point3::new(1.0, -0.5, 2.0),
         ],
-        vec![1.0, 2.0, 0.5, 1.0, 1.5],
+        vec![1.0, 1.3, 0.8, 1.0, 1.2],
     )
     .unwrap();
     let fourth = circle(0.5, 3.0, 1.0).elevate_degree(2).unwrap();
