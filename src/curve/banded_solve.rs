@@ -118,7 +118,7 @@ impl BandedMatrix {
                     best_abs = a;
                 }
             }
-            if !(best_abs > tiny) || !best_abs.is_finite() {
+            if best_abs <= tiny || !best_abs.is_finite() {
                 return Err(Error::SingularSystem { column: k });
             }
             self.pivots.push(best);
@@ -157,18 +157,20 @@ impl BandedMatrix {
         for k in 0..n {
             rhs.swap(k, self.pivots[k]);
             let xk = rhs[k];
-            for i in k + 1..=(k + kl).min(n - 1) {
+            let last = (k + kl).min(n - 1);
+            for (i, r) in rhs.iter_mut().enumerate().take(last + 1).skip(k + 1) {
                 let l = self.entry(i, k);
                 if l != 0.0 {
-                    rhs[i] -= xk * l;
+                    *r -= xk * l;
                 }
             }
         }
         // Backward: U, with kl + ku super-diagonals.
         for i in (0..n).rev() {
             let mut x = rhs[i];
-            for j in i + 1..=(i + kl + ku).min(n - 1) {
-                x -= rhs[j] * self.entry(i, j);
+            let last = (i + kl + ku).min(n - 1);
+            for (j, r) in rhs.iter().enumerate().take(last + 1).skip(i + 1) {
+                x -= *r * self.entry(i, j);
             }
             rhs[i] = x / self.entry(i, i);
         }

@@ -65,7 +65,7 @@ pub(crate) fn centripetal_steps<const D: usize>(points: &[Point<f64, D>]) -> Vec
 /// the last exactly 1; `None` when the total `S` is zero.
 pub(crate) fn normalized_sums(steps: &[f64]) -> Option<Vec<f64>> {
     let total: f64 = steps.iter().sum();
-    if !(total > 0.0) || !total.is_finite() {
+    if !total.is_finite() || total <= 0.0 {
         return None;
     }
     let mut params = Vec::with_capacity(steps.len() + 1);
@@ -84,7 +84,10 @@ pub(crate) fn normalized_sums(steps: &[f64]) -> Option<Vec<f64>> {
 /// The index `k` of the first step `ūₖ − ūₖ₋₁` below
 /// [`MIN_PARAMETER_STEP`], if any.
 pub(crate) fn first_short_step(params: &[f64]) -> Option<usize> {
-    (1..params.len()).find(|&k| !(params[k] - params[k - 1] >= MIN_PARAMETER_STEP))
+    (1..params.len()).find(|&k| {
+        let step = params[k] - params[k - 1];
+        step.is_nan() || step < MIN_PARAMETER_STEP
+    })
 }
 
 /// The centripetal parameters of a curve's data points (at least two).

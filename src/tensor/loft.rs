@@ -107,7 +107,7 @@ impl NurbsSurface {
                 .collect();
             for (j, h) in across.solve(&values).into_iter().enumerate() {
                 let w = h.w;
-                if !(w > 0.0) || !w.is_finite() {
+                if !w.is_finite() || w <= 0.0 {
                     return Err(Error::InvalidGridWeight {
                         row: i,
                         column: j,
@@ -303,7 +303,7 @@ fn section_parameters(sections: &[Section]) -> Result<Vec<f64>, Error> {
             .map(|(p, q)| length::<3>(&Vector3::from(q - p)))
             .sum::<f64>()
             / before.len() as f64;
-        if !(mean > 0.0) {
+        if mean.is_nan() || mean <= 0.0 {
             return Err(Error::CoincidentSections { index: k + 1 });
         }
         steps.push(mean.sqrt());
