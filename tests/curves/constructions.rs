@@ -67,7 +67,12 @@ fn averaged_knots(p: usize, params: &[f64]) -> Vec<f64> {
     knots
 }
 
-fn check_passes_through<const D: usize>(rng: &mut Rng, degrees: std::ops::RangeInclusive<usize>) {
+/// The largest miss relative to the data's size.
+fn check_passes_through<const D: usize>(
+    rng: &mut Rng,
+    degrees: std::ops::RangeInclusive<usize>,
+) -> f64 {
+    let mut worst = 0.0_f64;
     for p in degrees {
         for extra in [0, 1, 2, 5, 13, 30] {
             let points = random_points::<D>(rng, p + 1 + extra);
@@ -93,19 +98,22 @@ fn check_passes_through<const D: usize>(rng: &mut Rng, degrees: std::ops::RangeI
                     "p {p}, n {}: point {k} missed by {miss:e}",
                     points.len()
                 );
+                worst = worst.max(miss / size(&points));
             }
             assert_eq!(curve.points()[0], points[0]);
             assert_eq!(curve.points().last(), points.last());
         }
     }
+    worst
 }
 
 #[test]
 fn interpolation_passes_through_every_point_at_its_centripetal_parameter() {
     let mut rng = Rng(0x1234_5678);
-    check_passes_through::<1>(&mut rng, 1..=5);
-    check_passes_through::<2>(&mut rng, 1..=7);
-    check_passes_through::<3>(&mut rng, 1..=7);
+    let worst = check_passes_through::<1>(&mut rng, 1..=5)
+        .max(check_passes_through::<2>(&mut rng, 1..=7))
+        .max(check_passes_through::<3>(&mut rng, 1..=7));
+    println!("interpolation misses its points by at most {worst:e} of their size");
 }
 
 #[test]
@@ -539,5 +547,59 @@ proptest! {
         let c = (p + 1 + extra).min(points.len());
         prop_assume!(points.len() > p);
         check_fit_is_least_squares(&points, p, c);
+    }
+}
+
+/// A coordinate that is now and then hostile: NaN, infinite, beyond the
+/// limit, at the limit, tiny, zero.
+fn wild_coordinate() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        8 => -10.0f64..10.0,
+        1 => Just(f64::NAN),
+        1 => Just(f64::INFINITY),
+        1 => Just(2.0 * MAX_COORDINATE),
+        1 => Just(-MAX_COORDINATE),
+        1 => Just(1e-300),
+        1 => Just(0.0),
+    ]
+}
+
+/// Points with wild coordinates, a tenth of them repeating their
+/// predecessor.
+fn wild_points() -> impl Strategy<Value = Vec<Point2<f64>>> {
+    proptest::collection::vec((wild_coordinate(), wild_coordinate(), 0u8..10), 0..30).prop_map(
+        |raw| {
+            let mut points: Vec<Point2<f64>> = Vec::new();
+            for (x, y, repeat) in raw {
+                match points.last() {
+                    Some(&last) if repeat == 0 => points.push(last),
+                    _ => points.push(Point2::new(x, y)),
+                }
+            }
+            points
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Any input gives a curve whose points are finite, or an error; never
+    /// a panic.
+    #[test]
+    fn hostile_input_is_an_error_or_a_finite_curve(
+        p in 0usize..8,
+        c in 0usize..32,
+        points in wild_points(),
+    ) {
+        for result in [BSpline::interpolate(p, &points), BSpline::fit(p, &points, c)] {
+            if let Ok(curve) = result {
+                prop_assert_eq!(curve.domain(), (0.0, 1.0));
+                for s in curve.discretize(50) {
+                    prop_assert!(s.point.coords.iter().all(|x| x.is_finite()));
+                    prop_assert!(s.derivative.iter().all(|x| x.is_finite()));
+                }
+            }
+        }
     }
 }

@@ -362,6 +362,7 @@ fn loft_through_equal_circles_is_a_cylinder() {
             worst <= 1e-12,
             "degree_v {degree_v}: radius off by {worst:e}"
         );
+        println!("loft of circles, degree_v {degree_v}: radius off by at most {worst:e}");
         for (k, (&vk, &z)) in params.iter().zip(&heights).enumerate() {
             for i in 0..=40 {
                 let u = i as f64 / 40.0;
@@ -402,6 +403,7 @@ fn loft_of_degree_one_through_linearly_growing_circles_is_a_cone() {
         }
     }
     assert!(worst <= 1e-12, "off the cone by {worst:e}");
+    println!("degree-1 loft of growing circles: off the cone by at most {worst:e}");
 }
 
 /// The `v` at which the isocurve of `s` through `target` at `u` lies:
@@ -478,6 +480,9 @@ fn loft_through_incompatible_sections_interpolates_each() {
             assert!(
                 worst < 1e-12,
                 "degree_v {degree_v}, section {k}: off by {worst:e}"
+            );
+            println!(
+                "loft of incompatible sections, degree_v {degree_v}: section {k} off by {worst:e}"
             );
         }
     }
@@ -611,4 +616,85 @@ fn loft_errors_name_the_problem() {
             .to_string()
             .contains("section curves 3 and 4")
     );
+}
+
+mod hostile {
+    //! Any input gives a surface whose points are finite, or an error;
+    //! never a panic.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    fn wild_coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            8 => -10.0f64..10.0,
+            1 => Just(f64::NAN),
+            1 => Just(f64::NEG_INFINITY),
+            1 => Just(2.0 * MAX_COORDINATE),
+            1 => Just(1e-300),
+            1 => Just(0.0),
+        ]
+    }
+
+    fn wild_point() -> impl Strategy<Value = Point3<f64>> {
+        (wild_coordinate(), wild_coordinate(), wild_coordinate())
+            .prop_map(|(x, y, z)| Point3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+
+        #[test]
+        fn grids(
+            p in 0usize..5,
+            q in 0usize..5,
+            rows in proptest::collection::vec(proptest::collection::vec(wild_point(), 0..7), 0..7),
+            copy in 0usize..8,
+        ) {
+            let mut grid = rows;
+            // Now and then a repeated row.
+            if copy > 0 && copy < grid.len() {
+                grid[copy] = grid[copy - 1].clone();
+            }
+            if let Ok(s) = BSplineSurface::interpolate((p, q), grid) {
+                for k in 0..=8 {
+                    for l in 0..=8 {
+                        let x = s.eval(k as f64 / 8.0, l as f64 / 8.0);
+                        prop_assert!(x.coords.iter().all(|c| c.is_finite()));
+                    }
+                }
+            }
+        }
+
+        #[test]
+        fn lofts(
+            degree_v in 0usize..4,
+            sections in proptest::collection::vec(
+                (1usize..4, proptest::collection::vec(wild_point(), 2..7), 0.1f64..10.0),
+                0..5,
+            ),
+        ) {
+            let curves: Vec<Nurbs<3>> = sections
+                .into_iter()
+                .filter_map(|(p, points, w)| {
+                    let n = points.len();
+                    let weights = (0..n).map(|i| if i % 2 == 0 { 1.0 } else { w }).collect();
+                    let p = p.min(n - 1);
+                    let knots = (0..n + p + 1)
+                        .map(|i| i.saturating_sub(p).min(n - p) as f64)
+                        .collect();
+                    Nurbs::new(p, knots, points, weights).ok()
+                })
+                .collect();
+            if let Ok(s) = NurbsSurface::loft(&curves, degree_v) {
+                let [(a, b), _] = s.domain();
+                for k in 0..=8 {
+                    for l in 0..=8 {
+                        let x = s.eval(a + (b - a) * k as f64 / 8.0, l as f64 / 8.0);
+                        prop_assert!(x.coords.iter().all(|c| c.is_finite()));
+                    }
+                }
+            }
+        }
+    }
 }
