@@ -117,6 +117,33 @@ fn interpolation_passes_through_every_point_at_its_centripetal_parameter() {
 }
 
 #[test]
+fn long_random_walks_are_interpolated() {
+    // 5000 points: the banded solve at scale, every degree up to 7.
+    let mut rng = Rng(2024);
+    let mut walk = vec![Point3::origin()];
+    for _ in 1..5000 {
+        let last = *walk.last().unwrap();
+        walk.push(
+            last + Vector3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(0.1, 1.0),
+            ),
+        );
+    }
+    let params = centripetal(&walk);
+    for p in [1, 3, 7] {
+        let curve = BSpline::interpolate(p, &walk).unwrap();
+        let tol = 1e-12 * size(&walk);
+        for (q, &u) in walk.iter().zip(&params) {
+            assert!((curve.eval(u) - q).norm() <= tol, "p {p}");
+        }
+        let fit = BSpline::fit(p, &walk, 700).unwrap();
+        assert_eq!(fit.points().len(), 700);
+    }
+}
+
+#[test]
 fn degree_one_interpolation_is_the_polyline() {
     let points = [
         Point2::new(0.0, 0.0),
