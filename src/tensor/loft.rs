@@ -48,11 +48,21 @@ impl NurbsSurface {
     /// with `degree_v = 1` each strip between two sections is ruled
     /// (circles of linearly varying radius give a cone).
     ///
+    /// # Edge rules
+    /// - Sections need not be clamped, share a domain, a degree or knots;
+    ///   their orientation is taken as given (reverse one with
+    ///   [`Nurbs::reversed`] to flip it).
+    /// - With `degree_v ≥ 2`, the interpolated weights can dip to zero or
+    ///   below between sections whose weights at the same control point
+    ///   differ a lot (a weight of `10⁻³` between weights 1): that is
+    ///   [`Error::InvalidGridWeight`], never a surface with a pole.
+    ///   Polynomial sections (weights all 1) never meet it.
+    ///
     /// ```
     /// use revolve::{Nurbs, NurbsSurface, Surface};
     /// use revolve::nalgebra::Point3;
     ///
-    /// // Three straight sections at heights 0, 1, 3: a bilinear sheet.
+    /// // Three straight sections at heights 0, 1, 3, quadratic across them.
     /// let line = |y: f64, z: f64| {
     ///     Nurbs::new(1, vec![0.0, 0.0, 1.0, 1.0],
     ///                vec![Point3::new(0.0, y, z), Point3::new(2.0, y, z)], vec![1.0, 1.0])
@@ -62,7 +72,7 @@ impl NurbsSurface {
     /// assert_eq!(s.degrees(), (1, 2));
     /// assert!((s.eval(0.25, 0.0) - Point3::new(0.5, 0.0, 0.0)).norm() < 1e-15);
     /// assert!((s.eval(1.0, 1.0) - Point3::new(2.0, 1.0, 3.0)).norm() < 1e-15);
-    /// // Between the sections the sheet is bilinear in x, quadratic across.
+    /// // Linear along u (in x), quadratic across the sections (in v).
     /// let p = s.eval(0.5, 0.5);
     /// assert!((p.x - 1.0).abs() < 1e-15 && p.z > 0.0 && p.z < 3.0);
     /// # Ok::<(), revolve::Error>(())

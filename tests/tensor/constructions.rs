@@ -277,6 +277,15 @@ fn grid_interpolation_errors_name_the_problem() {
             index: 1
         })
     );
+    assert_eq!(
+        Error::CoincidentGridPoints {
+            direction: ParameterDirection::U,
+            index: 2
+        }
+        .to_string(),
+        "along u, the grid's points 1 and 2 coincide in every row or column: their \
+         parameters cannot differ"
+    );
     assert!(
         Error::GridTooSmall {
             direction: ParameterDirection::V,
