@@ -431,6 +431,89 @@ pub enum Error {
         /// Where span `index` starts.
         start: f64,
     },
+    // Constructions through data: interpolation, least-squares fitting and
+    // lofting (`BSpline::interpolate`, `BSpline::fit`,
+    // `BSplineSurface::interpolate`, `NurbsSurface::loft`).
+    /// Interpolation, fitting or lofting was asked for degree 0: a curve of
+    /// degree 0 is piecewise constant and passes through no two distinct
+    /// points.
+    ZeroDegree,
+    /// Too few data points for the degree: interpolation or fitting of
+    /// degree `p` needs at least `p + 1` points.
+    TooFewPoints {
+        /// The requested degree.
+        degree: usize,
+        /// The number of data points given.
+        points: usize,
+    },
+    /// Two consecutive data points coincide, `points[index − 1] ==
+    /// points[index]` (a zero chord), or lie so close together, relative
+    /// to the other chords, that their parameters cannot be told apart
+    /// (a centripetal parameter step below `16ε` of the whole).
+    CoincidentPoints {
+        /// Index of the second point of the pair.
+        index: usize,
+    },
+    /// A least-squares fit was asked for more control points than there
+    /// are data points.
+    TooManyControlPoints {
+        /// The number of control points asked for.
+        control_points: usize,
+        /// The number of data points given.
+        points: usize,
+    },
+    /// A least-squares fit was asked for `degree` or fewer control points;
+    /// a spline of degree `p` needs at least `p + 1`.
+    TooFewControlPoints {
+        /// The number of control points asked for.
+        control_points: usize,
+        /// The requested degree.
+        degree: usize,
+    },
+    /// A grid to interpolate has too few points along a direction for the
+    /// degree there (`degree + 1` are needed): rows along `u`, columns
+    /// along `v`.
+    GridTooSmall {
+        /// `u` (the number of rows) or `v` (the length of the rows).
+        direction: ParameterDirection,
+        /// The number of points along that direction.
+        found: usize,
+        /// The degree asked for in that direction.
+        degree: usize,
+    },
+    /// Along `direction`, the grid's points `index − 1` and `index`
+    /// coincide in every row (`v`) or every column (`u`) that has any
+    /// length, so the averaged parameters cannot separate them (or no row
+    /// or column has any length at all: then `index` is 1).
+    CoincidentGridPoints {
+        /// The direction in which the points follow each other.
+        direction: ParameterDirection,
+        /// Index of the second row (`u`) or column (`v`) of the pair.
+        index: usize,
+    },
+    /// A loft of degree `degree` in `v` needs at least `max(2, degree + 1)`
+    /// section curves.
+    TooFewSections {
+        /// The number of section curves given.
+        sections: usize,
+        /// The degree asked for across the sections.
+        degree: usize,
+    },
+    /// Section curves `index − 1` and `index` of a loft have the same
+    /// control points once made compatible (their average distance is
+    /// zero, or too small for their parameters to be told apart), so no
+    /// surface can pass through both at different parameters.
+    CoincidentSections {
+        /// Index of the second section of the pair.
+        index: usize,
+    },
+    /// The linear system of an interpolation or least-squares fit is
+    /// singular to working precision: elimination found no pivot larger
+    /// than `ε ×` the matrix's largest entry in this column.
+    SingularSystem {
+        /// The column (unknown) without a usable pivot.
+        column: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -769,6 +852,70 @@ impl fmt::Display for Error {
                  a spline surface needs spans without gaps",
                 Num(start),
                 Num(previous_end)
+            ),
+            Error::ZeroDegree => write!(
+                f,
+                "interpolation, fitting and lofting need degree 1 or more, got 0"
+            ),
+            Error::TooFewPoints { degree, points } => write!(
+                f,
+                "degree {degree} needs at least {} data points, got {points}",
+                degree.saturating_add(1)
+            ),
+            Error::CoincidentPoints { index } => write!(
+                f,
+                "data points {} and {index} coincide (zero chord, or too short beside \
+                 the others for their parameters to differ): remove one of them",
+                index.saturating_sub(1)
+            ),
+            Error::TooManyControlPoints {
+                control_points,
+                points,
+            } => write!(
+                f,
+                "a fit with {control_points} control points needs at least as many data \
+                 points, got {points}"
+            ),
+            Error::TooFewControlPoints {
+                control_points,
+                degree,
+            } => write!(
+                f,
+                "a fit of degree {degree} needs at least {} control points, got {control_points}",
+                degree.saturating_add(1)
+            ),
+            Error::GridTooSmall {
+                direction,
+                found,
+                degree,
+            } => write!(
+                f,
+                "the grid has {found} points along {direction}; degree {degree} there needs \
+                 at least {}",
+                degree.saturating_add(1)
+            ),
+            Error::CoincidentGridPoints { direction, index } => write!(
+                f,
+                "along {direction}, the grid's points {} and {index} coincide in every row or \
+                 column: their parameters cannot differ",
+                index.saturating_sub(1)
+            ),
+            Error::TooFewSections { sections, degree } => write!(
+                f,
+                "a loft of degree {degree} across its sections needs at least {} section \
+                 curves, got {sections}",
+                degree.saturating_add(1).max(2)
+            ),
+            Error::CoincidentSections { index } => write!(
+                f,
+                "section curves {} and {index} of the loft coincide (the same control points \
+                 once made compatible): remove one of them",
+                index.saturating_sub(1)
+            ),
+            Error::SingularSystem { column } => write!(
+                f,
+                "the interpolation or fitting system is singular to working precision at \
+                 unknown {column}"
             ),
         }
     }

@@ -21,13 +21,16 @@
 //! ```
 
 mod arc_length;
+mod banded_solve;
 mod bezier;
 mod bspline;
 mod conic;
 mod elevate;
+mod fit;
 mod flatten;
 mod gauss_remainder;
 mod homogeneous;
+mod interpolate;
 mod knots;
 mod nurbs;
 mod pieces;
@@ -42,6 +45,9 @@ pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
 pub use homogeneous::MAX_DERIVATIVE_ORDER;
 pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
+pub(crate) use interpolate::{
+    Interpolation, averaged_parameters, first_short_step, length, normalized_sums,
+};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
 pub(crate) use query::check_query_point;

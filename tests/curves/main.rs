@@ -8,6 +8,7 @@
 
 mod bezier;
 mod bspline;
+mod constructions;
 mod elevate;
 mod nurbs;
 mod properties;

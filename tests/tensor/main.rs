@@ -9,6 +9,7 @@
 //! tolerances.
 
 mod bezier_patches;
+mod constructions;
 mod constructions_surfaces;
 mod nearest;
 mod patch_hard_cases;
