@@ -95,7 +95,9 @@ pub struct CurveIntersection {
 ///
 /// # Edge rules and caps
 /// Intersections at the ends of the domains are included (an end lying on
-/// the other curve is a result). A root just outside a span, by at most
+/// the other curve is a result). On a closed curve (its two ends one point,
+/// as a full circle) an intersection at the seam is reported once, at
+/// either end. A root just outside a span, by at most
 /// `1e-12` of its width, counts as at its end. A curve of degree 0 (a
 /// point) is never certified. Work is bounded: at most 2¹⁸ boxes and 2¹³
 /// undecided leaves per pair of spans, boxes at most 48 halvings deep.
@@ -201,12 +203,21 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
         }
     }
     let width = |spans: &[RationalBezierSpan<2>], k: usize| spans[k].knots.1 - spans[k].knots.0;
+    let ends = |spans: &[RationalBezierSpan<2>]| (spans[0].knots.0, spans[spans.len() - 1].knots.1);
+    let (ends_a, ends_b) = (ends(&spans_a), ends(&spans_b));
+    // The two ends of a closed curve's domain are one point (its seam).
+    let seam = |x: f64, y: f64, (s, e): (f64, f64)| (x == s && y == e) || (x == e && y == s);
+    let coincide = 64.0 * f64::EPSILON * magnitude;
     let mut out: Vec<(CurveIntersection, f64, f64)> = Vec::new();
     for (hit, i, j) in found {
         let (wa, wb) = (width(&spans_a, i), width(&spans_b, j));
         let same = |o: &(CurveIntersection, f64, f64)| {
-            let near = (o.0.t_a - hit.t_a).abs() <= DUPLICATE * wa.max(o.1)
-                && (o.0.t_b - hit.t_b).abs() <= DUPLICATE * wb.max(o.2);
+            let on_seam = (o.0.point - hit.point).norm() <= coincide;
+            let same_a = (o.0.t_a - hit.t_a).abs() <= DUPLICATE * wa.max(o.1)
+                || (on_seam && seam(o.0.t_a, hit.t_a, ends_a));
+            let same_b = (o.0.t_b - hit.t_b).abs() <= DUPLICATE * wb.max(o.2)
+                || (on_seam && seam(o.0.t_b, hit.t_b, ends_b));
+            let near = same_a && same_b;
             let close = (!o.0.certified || !hit.certified)
                 && (o.0.point - hit.point).norm() <= 4.0 * tolerance;
             near || close

@@ -9,6 +9,7 @@
 mod bezier;
 mod bspline;
 mod elevate;
+mod intersections;
 mod nurbs;
 mod properties;
 mod queries;
