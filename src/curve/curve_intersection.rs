@@ -236,6 +236,12 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     Ok(out)
 }
 
+/// Checks spans as [`CurveProjector::from_spans`](super::CurveProjector::from_spans)
+/// documents: [`Error::SpansOutOfOrder`], [`Error::SpanPointNotFinite`].
+pub(crate) fn check_spans<const D: usize>(spans: &[RationalBezierSpan<D>]) -> Result<(), Error> {
+    validate_spans(spans)
+}
+
 /// The curve parameter of a span's local parameter `s ∈ [0, 1]`.
 pub(crate) fn parameter<const D: usize>(span: &RationalBezierSpan<D>, s: f64) -> f64 {
     let (a, b) = span.knots;

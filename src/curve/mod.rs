@@ -40,7 +40,7 @@ pub use arc_length::ArcLength;
 pub use bezier::{Bezier, BezierSpan};
 pub use bspline::BSpline;
 pub use curve_intersection::{CurveIntersection, MIN_INTERSECTION_TOLERANCE, intersect_curves};
-pub(crate) use curve_intersection::{parameter as span_parameter, span_net};
+pub(crate) use curve_intersection::{check_spans, parameter as span_parameter, span_net};
 pub(crate) use intersection_search::{LocalRoot, MAX_SYSTEM, Net, PairOutcome, search_pair};
 pub use elevate::{ELEVATION_ACCURACY, MAX_ELEVATED_DEGREE};
 pub use flatten::Flattening;

@@ -9,6 +9,7 @@
 //! tolerances.
 
 mod bezier_patches;
+mod curve_surface;
 mod nearest;
 mod patch_hard_cases;
 mod patch_intersect;
