@@ -170,7 +170,7 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     let scale = if magnitude > 0.0 { power_of_two_near(magnitude) } else { 1.0 };
     let nets_a: Vec<Net<2>> = spans_a.iter().map(|s| span_net(&s.curve, scale)).collect();
     let nets_b: Vec<Net<2>> = spans_b.iter().map(|s| span_net(&s.curve, scale)).collect();
-    let mut found: Vec<(CurveIntersection, usize, usize)> = Vec::new();
+    let mut found: Vec<(CurveIntersection, usize, usize, [(f64, f64); 2])> = Vec::new();
     for (i, (sa, na)) in spans_a.iter().zip(&nets_a).enumerate() {
         for (j, (sb, nb)) in spans_b.iter().zip(&nets_b).enumerate() {
             if !boxes_meet(&sa.curve, &sb.curve, tolerance) {
@@ -178,7 +178,7 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
             }
             match search_pair(na, nb, tolerance / scale) {
                 PairOutcome::Roots(roots) => {
-                    for LocalRoot { x, certified } in roots {
+                    for LocalRoot { x, certified, hull } in roots {
                         let pa = sa.curve.eval(x[0]);
                         let pb = sb.curve.eval(x[1]);
                         found.push((
@@ -190,6 +190,10 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
                             },
                             i,
                             j,
+                            [
+                                (parameter(sa, hull[0].0), parameter(sa, hull[0].1)),
+                                (parameter(sb, hull[1].0), parameter(sb, hull[1].1)),
+                            ],
                         ));
                     }
                 }
@@ -206,12 +210,15 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     let ends = |spans: &[RationalBezierSpan<2>]| (spans[0].knots.0, spans[spans.len() - 1].knots.1);
     let (ends_a, ends_b) = (ends(&spans_a), ends(&spans_b));
     // The two ends of a closed curve's domain are one point (its seam).
-    let seam = |x: f64, y: f64, (s, e): (f64, f64)| (x == s && y == e) || (x == e && y == s);
+    let seam = |x: f64, y: f64, (s, e): (f64, f64)| {
+        let at = |p: f64, q: f64| (p - q).abs() <= DUPLICATE * (e - s);
+        (at(x, s) && at(y, e)) || (at(x, e) && at(y, s))
+    };
     let coincide = 64.0 * f64::EPSILON * magnitude;
-    let mut out: Vec<(CurveIntersection, f64, f64)> = Vec::new();
-    for (hit, i, j) in found {
+    let mut out: Vec<(CurveIntersection, f64, f64, [(f64, f64); 2])> = Vec::new();
+    for (hit, i, j, region) in found {
         let (wa, wb) = (width(&spans_a, i), width(&spans_b, j));
-        let same = |o: &(CurveIntersection, f64, f64)| {
+        let same = |o: &(CurveIntersection, f64, f64, [(f64, f64); 2])| {
             let on_seam = (o.0.point - hit.point).norm() <= coincide;
             let same_a = (o.0.t_a - hit.t_a).abs() <= DUPLICATE * wa.max(o.1)
                 || (on_seam && seam(o.0.t_a, hit.t_a, ends_a));
@@ -220,15 +227,26 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
             let near = same_a && same_b;
             let close = (!o.0.certified || !hit.certified)
                 && (o.0.point - hit.point).norm() <= 4.0 * tolerance;
-            near || close
+            // Clusters that touch across a span join are one.
+            let slack = [DUPLICATE * wa.max(o.1), DUPLICATE * wb.max(o.2)];
+            let touch = !o.0.certified
+                && !hit.certified
+                && (0..2).all(|k| {
+                    region[k].0 <= o.3[k].1 + slack[k] && o.3[k].0 <= region[k].1 + slack[k]
+                });
+            near || close || touch
         };
         match out.iter_mut().find(|o| same(o)) {
             Some(o) => {
                 if hit.certified && !o.0.certified {
-                    *o = (hit, wa, wb);
+                    *o = (hit, wa, wb, region);
+                } else if !hit.certified && !o.0.certified {
+                    for k in 0..2 {
+                        o.3[k] = (o.3[k].0.min(region[k].0), o.3[k].1.max(region[k].1));
+                    }
                 }
             }
-            None => out.push((hit, wa, wb)),
+            None => out.push((hit, wa, wb, region)),
         }
     }
     let mut out: Vec<CurveIntersection> = out.into_iter().map(|o| o.0).collect();

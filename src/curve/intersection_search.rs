@@ -344,6 +344,9 @@ fn separated_along<const D: usize>(a: &Piece<D>, b: &Piece<D>, dir: &SVector<f64
 pub(crate) struct LocalRoot<const D: usize> {
     pub(crate) x: [f64; D],
     pub(crate) certified: bool,
+    /// For an uncertified root, the hull of its cluster of leaves (where
+    /// the pieces come within the tolerance); `x` itself for a certified one.
+    pub(crate) hull: [(f64, f64); D],
 }
 
 /// What the search of one pair of pieces found.
@@ -508,6 +511,7 @@ fn representative<const D: usize>(a: &Net<D>, b: &Net<D>, cluster: &[[(f64, f64)
     LocalRoot {
         x: best.1,
         certified: false,
+        hull: hull(cluster),
     }
 }
 
@@ -626,9 +630,11 @@ fn certify<const D: usize>(
         // the box (the root belongs to a neighbouring span, or to none).
         return Some(None);
     }
+    let x = x.map(|v| v.clamp(0.0, 1.0));
     Some(Some(LocalRoot {
-        x: x.map(|v| v.clamp(0.0, 1.0)),
+        x,
         certified: true,
+        hull: x.map(|v| (v, v)),
     }))
 }
 

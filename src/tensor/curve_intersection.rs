@@ -117,7 +117,7 @@ impl PatchTable {
                 }
             })
             .collect();
-        let mut found: Vec<(CurveSurfaceHit, [f64; 3])> = Vec::new();
+        let mut found: Vec<(CurveSurfaceHit, [f64; 3], [(f64, f64); 3])> = Vec::new();
         for span in &spans {
             let net = span_net(&span.curve, scale);
             let (lo, hi) = span.curve.bounds();
@@ -142,7 +142,7 @@ impl PatchTable {
                 };
                 match search_pair(&net, &patch_nets[k], tolerance / scale) {
                     PairOutcome::Roots(roots) => {
-                        for LocalRoot { x, certified } in roots {
+                        for LocalRoot { x, certified, hull } in roots {
                             let (u, v) = (at(patch.u, x[1]), at(patch.v, x[2]));
                             let on_curve = span.curve.eval(x[0]);
                             let on_surface = Point3::from(self.jet(u, v, 0)[0][0]);
@@ -159,6 +159,11 @@ impl PatchTable {
                                     certified,
                                 },
                                 widths,
+                                [
+                                    (span_parameter(span, hull[0].0), span_parameter(span, hull[0].1)),
+                                    (at(patch.u, hull[1].0), at(patch.u, hull[1].1)),
+                                    (at(patch.v, hull[2].0), at(patch.v, hull[2].1)),
+                                ],
                             ));
                         }
                     }
@@ -173,11 +178,15 @@ impl PatchTable {
             }
         }
         let ends = (spans[0].knots.0, spans[spans.len() - 1].knots.1);
-        let seam = |x: f64, y: f64| (x == ends.0 && y == ends.1) || (x == ends.1 && y == ends.0);
+        let seam = |x: f64, y: f64| {
+            let at = |p: f64, q: f64| (p - q).abs() <= DUPLICATE * (ends.1 - ends.0);
+            (at(x, ends.0) && at(y, ends.1)) || (at(x, ends.1) && at(y, ends.0))
+        };
         let coincide = 64.0 * f64::EPSILON * magnitude;
-        let mut out: Vec<(CurveSurfaceHit, [f64; 3])> = Vec::new();
-        for (hit, w) in found {
-            let same = |o: &(CurveSurfaceHit, [f64; 3])| {
+        type Entry = (CurveSurfaceHit, [f64; 3], [(f64, f64); 3]);
+        let mut out: Vec<Entry> = Vec::new();
+        for (hit, w, region) in found {
+            let same = |o: &Entry| {
                 let wide = |k: usize| DUPLICATE * w[k].max(o.1[k]);
                 let points = (o.0.point - hit.point).norm() <= coincide;
                 let same_t = (o.0.t - hit.t).abs() <= wide(0) || (points && seam(o.0.t, hit.t));
@@ -186,15 +195,26 @@ impl PatchTable {
                     || points;
                 let close = (!o.0.certified || !hit.certified)
                     && (o.0.point - hit.point).norm() <= 4.0 * tolerance;
-                (same_t && same_uv) || close
+                // Clusters that touch across a span join or a patch edge
+                // are one.
+                let touch = !o.0.certified
+                    && !hit.certified
+                    && (0..3).all(|k| {
+                        region[k].0 <= o.2[k].1 + wide(k) && o.2[k].0 <= region[k].1 + wide(k)
+                    });
+                (same_t && same_uv) || close || touch
             };
             match out.iter_mut().find(|o| same(o)) {
                 Some(o) => {
                     if hit.certified && !o.0.certified {
-                        *o = (hit, w);
+                        *o = (hit, w, region);
+                    } else if !hit.certified && !o.0.certified {
+                        for k in 0..3 {
+                            o.2[k] = (o.2[k].0.min(region[k].0), o.2[k].1.max(region[k].1));
+                        }
                     }
                 }
-                None => out.push((hit, w)),
+                None => out.push((hit, w, region)),
             }
         }
         let mut out: Vec<CurveSurfaceHit> = out.into_iter().map(|o| o.0).collect();
