@@ -3,7 +3,9 @@
 
 use super::intersection_search::{LocalRoot, MAX_SYSTEM, Net, PairOutcome, search_pair};
 use super::query::validate_spans;
-use super::{Homogeneous, RationalBezier, RationalBezierSpan, max_abs_coordinate, power_of_two_near};
+use super::{
+    Homogeneous, RationalBezier, RationalBezierSpan, max_abs_coordinate, power_of_two_near,
+};
 use crate::{Curve, Error};
 use nalgebra::{Point, Point2};
 
@@ -16,6 +18,13 @@ pub const MIN_INTERSECTION_TOLERANCE: f64 = 1e-10;
 /// width) are one intersection found twice (at a span join, or by two
 /// neighbouring boxes).
 const DUPLICATE: f64 = 1e-9;
+
+/// A result with the widths of its spans and its parameter region (the
+/// cluster's hull for an uncertified one).
+type Entry = (CurveIntersection, f64, f64, [(f64, f64); 2]);
+
+/// A result with the indices of its spans and its parameter region.
+type Found = (CurveIntersection, usize, usize, [(f64, f64); 2]);
 
 /// One common point of two curves `a` and `b`: `a(t_a) = b(t_b) = point`.
 ///
@@ -143,8 +152,12 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidTolerance { tolerance });
     }
-    let spans_a = a.rational_bezier_spans().ok_or(Error::NotPiecewiseRational)?;
-    let spans_b = b.rational_bezier_spans().ok_or(Error::NotPiecewiseRational)?;
+    let spans_a = a
+        .rational_bezier_spans()
+        .ok_or(Error::NotPiecewiseRational)?;
+    let spans_b = b
+        .rational_bezier_spans()
+        .ok_or(Error::NotPiecewiseRational)?;
     validate_spans(&spans_a)?;
     validate_spans(&spans_b)?;
     let magnitude = spans_a
@@ -167,10 +180,14 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
             }
         }
     }
-    let scale = if magnitude > 0.0 { power_of_two_near(magnitude) } else { 1.0 };
+    let scale = if magnitude > 0.0 {
+        power_of_two_near(magnitude)
+    } else {
+        1.0
+    };
     let nets_a: Vec<Net<2>> = spans_a.iter().map(|s| span_net(&s.curve, scale)).collect();
     let nets_b: Vec<Net<2>> = spans_b.iter().map(|s| span_net(&s.curve, scale)).collect();
-    let mut found: Vec<(CurveIntersection, usize, usize, [(f64, f64); 2])> = Vec::new();
+    let mut found: Vec<Found> = Vec::new();
     for (i, (sa, na)) in spans_a.iter().zip(&nets_a).enumerate() {
         for (j, (sb, nb)) in spans_b.iter().zip(&nets_b).enumerate() {
             if !boxes_meet(&sa.curve, &sb.curve, tolerance) {
@@ -215,10 +232,10 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
         (at(x, s) && at(y, e)) || (at(x, e) && at(y, s))
     };
     let coincide = 64.0 * f64::EPSILON * magnitude;
-    let mut out: Vec<(CurveIntersection, f64, f64, [(f64, f64); 2])> = Vec::new();
+    let mut out: Vec<Entry> = Vec::new();
     for (hit, i, j, region) in found {
         let (wa, wb) = (width(&spans_a, i), width(&spans_b, j));
-        let same = |o: &(CurveIntersection, f64, f64, [(f64, f64); 2])| {
+        let same = |o: &Entry| {
             let on_seam = (o.0.point - hit.point).norm() <= coincide;
             let same_a = (o.0.t_a - hit.t_a).abs() <= DUPLICATE * wa.max(o.1)
                 || (on_seam && seam(o.0.t_a, hit.t_a, ends_a));
@@ -241,8 +258,8 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
                 if hit.certified && !o.0.certified {
                     *o = (hit, wa, wb, region);
                 } else if !hit.certified && !o.0.certified {
-                    for k in 0..2 {
-                        o.3[k] = (o.3[k].0.min(region[k].0), o.3[k].1.max(region[k].1));
+                    for (slot, r) in o.3.iter_mut().zip(&region) {
+                        *slot = (slot.0.min(r.0), slot.1.max(r.1));
                     }
                 }
             }

@@ -169,7 +169,7 @@ impl<const D: usize> Net<D> {
             }
             _ => return None,
         };
-        if !(h.w > 0.0) {
+        if h.w.is_nan() || h.w <= 0.0 {
             return None;
         }
         let p = h.wp / h.w;
@@ -180,7 +180,10 @@ impl<const D: usize> Net<D> {
 
 /// The value and the derivative at `t` of the Bernstein polynomial `c`
 /// (de Casteljau; zero derivative for degree 0).
-fn eval_derivative<const D: usize>(c: &[Homogeneous<D>], t: f64) -> (Homogeneous<D>, Homogeneous<D>) {
+fn eval_derivative<const D: usize>(
+    c: &[Homogeneous<D>],
+    t: f64,
+) -> (Homogeneous<D>, Homogeneous<D>) {
     let mut w = c.to_vec();
     let n = w.len() - 1;
     if n == 0 {
@@ -293,7 +296,10 @@ fn bounds<const D: usize>(points: &[SVector<f64, D>]) -> (SVector<f64, D>, SVect
 /// A normal of the piece: for a curve in the plane the normal of its chord,
 /// for a patch in space the cross product of its diagonals; `None` in
 /// other cases or where it vanishes.
-fn normal<const D: usize>(points: &[SVector<f64, D>], degrees: &[usize]) -> Option<SVector<f64, D>> {
+fn normal<const D: usize>(
+    points: &[SVector<f64, D>],
+    degrees: &[usize],
+) -> Option<SVector<f64, D>> {
     let last = points.len() - 1;
     let n = match (D, degrees.len()) {
         (2, 1) => {
@@ -324,10 +330,12 @@ fn normal<const D: usize>(points: &[SVector<f64, D>], degrees: &[usize]) -> Opti
 /// certainly apart.
 fn separated_along<const D: usize>(a: &Piece<D>, b: &Piece<D>, dir: &SVector<f64, D>) -> bool {
     let range = |p: &Piece<D>| {
-        p.points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-            let v = dir.dot(x);
-            (lo.min(v), hi.max(v))
-        })
+        p.points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                let v = dir.dot(x);
+                (lo.min(v), hi.max(v))
+            })
     };
     let (a_lo, a_hi) = range(a);
     let (b_lo, b_hi) = range(b);
@@ -368,7 +376,11 @@ struct Item<const D: usize> {
 /// Every common point of the curve piece `a` (one parameter) and the piece
 /// `b` (`D − 1` parameters), both scaled as the module docs say;
 /// `tolerance` in the scaled units.
-pub(crate) fn search_pair<const D: usize>(a: &Net<D>, b: &Net<D>, tolerance: f64) -> PairOutcome<D> {
+pub(crate) fn search_pair<const D: usize>(
+    a: &Net<D>,
+    b: &Net<D>,
+    tolerance: f64,
+) -> PairOutcome<D> {
     let (ma, mb) = (a.magnitudes(), b.magnitudes());
     let mut stack = vec![Item {
         bx: [(0.0, 1.0); D],
@@ -449,10 +461,13 @@ fn excluded<const D: usize>(pa: &Piece<D>, pb: &Piece<D>, b_degrees: &[usize]) -
             return true;
         }
     }
-    [normal(&pa.points, &[pa.points.len() - 1]), normal(&pb.points, b_degrees)]
-        .iter()
-        .flatten()
-        .any(|n| separated_along(pa, pb, n))
+    [
+        normal(&pa.points, &[pa.points.len() - 1]),
+        normal(&pb.points, b_degrees),
+    ]
+    .iter()
+    .flatten()
+    .any(|n| separated_along(pa, pb, n))
 }
 
 /// The hull of boxes (non-empty).
@@ -479,14 +494,16 @@ fn clusters<const D: usize>(leaves: &[[(f64, f64); D]]) -> Vec<Vec<[(f64, f64); 
     }
     for i in 0..leaves.len() {
         for j in 0..i {
-            let touch = (0..D).all(|k| leaves[i][k].0 <= leaves[j][k].1 && leaves[j][k].0 <= leaves[i][k].1);
+            let touch = (0..D)
+                .all(|k| leaves[i][k].0 <= leaves[j][k].1 && leaves[j][k].0 <= leaves[i][k].1);
             if touch {
                 let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
                 parent[ri] = rj;
             }
         }
     }
-    let mut groups: Vec<(usize, Vec<[(f64, f64); D]>)> = Vec::new();
+    type Group<const D: usize> = (usize, Vec<[(f64, f64); D]>);
+    let mut groups: Vec<Group<D>> = Vec::new();
     for (i, leaf) in leaves.iter().enumerate() {
         let r = find(&mut parent, i);
         match groups.iter_mut().find(|(root, _)| *root == r) {
@@ -499,7 +516,11 @@ fn clusters<const D: usize>(leaves: &[[(f64, f64); D]]) -> Vec<Vec<[(f64, f64); 
 
 /// One uncertified root for a cluster of leaves: the centre of the leaf
 /// whose pieces' points there are nearest.
-fn representative<const D: usize>(a: &Net<D>, b: &Net<D>, cluster: &[[(f64, f64); D]]) -> LocalRoot<D> {
+fn representative<const D: usize>(
+    a: &Net<D>,
+    b: &Net<D>,
+    cluster: &[[(f64, f64); D]],
+) -> LocalRoot<D> {
     let mut best = (f64::INFINITY, [0.5; D]);
     for bx in cluster {
         let x: [f64; D] = std::array::from_fn(|k| 0.5 * (bx[k].0 + bx[k].1));
@@ -516,7 +537,11 @@ fn representative<const D: usize>(a: &Net<D>, b: &Net<D>, cluster: &[[(f64, f64)
 }
 
 /// `F(x) = A(s) − B(y)` and its Jacobian's columns.
-fn residual<const D: usize>(a: &Net<D>, b: &Net<D>, x: &[f64; D]) -> Option<(SVector<f64, D>, [SVector<f64, D>; D])> {
+fn residual<const D: usize>(
+    a: &Net<D>,
+    b: &Net<D>,
+    x: &[f64; D],
+) -> Option<(SVector<f64, D>, [SVector<f64, D>; D])> {
     let (pa, da) = a.jet(&x[..1])?;
     let (pb, db) = b.jet(&x[1..])?;
     let mut jac = [SVector::<f64, D>::zeros(); D];
@@ -621,7 +646,10 @@ fn certify<const D: usize>(
     // The enclosure in the span's parameters.
     let k: [(f64, f64); D] = std::array::from_fn(|i| {
         let (lo, hi) = wide[i];
-        (lo + (hi - lo) * enclosure[i].0, lo + (hi - lo) * enclosure[i].1)
+        (
+            lo + (hi - lo) * enclosure[i].0,
+            lo + (hi - lo) * enclosure[i].1,
+        )
     });
     let x = polish(a, b, &k, &wide);
     let slack = 1e-12;
@@ -641,7 +669,12 @@ fn certify<const D: usize>(
 /// Newton's method on `F` from the middle of the enclosure `k`, kept in the
 /// widened box; the result if it stays in `k` (which holds the root), else
 /// the middle of `k`.
-fn polish<const D: usize>(a: &Net<D>, b: &Net<D>, k: &[(f64, f64); D], wide: &[(f64, f64); D]) -> [f64; D] {
+fn polish<const D: usize>(
+    a: &Net<D>,
+    b: &Net<D>,
+    k: &[(f64, f64); D],
+    wide: &[(f64, f64); D],
+) -> [f64; D] {
     let middle: [f64; D] = std::array::from_fn(|i| 0.5 * (k[i].0 + k[i].1));
     let mut x = middle;
     let mut last = f64::INFINITY;
@@ -653,7 +686,7 @@ fn polish<const D: usize>(a: &Net<D>, b: &Net<D>, k: &[(f64, f64); D], wide: &[(
             break;
         };
         let size = step.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
-        if !(size < last) {
+        if size.is_nan() || size >= last {
             break;
         }
         for i in 0..D {
@@ -676,7 +709,11 @@ fn polish<const D: usize>(a: &Net<D>, b: &Net<D>, k: &[(f64, f64); D], wide: &[(
 /// `[0, 1]^D`: the enclosure `K` if it lies strictly inside, which proves
 /// exactly one root there (in `K`).
 #[allow(clippy::needless_range_loop)]
-fn krawczyk<const D: usize>(g: &[SVector<f64, D>], degrees: &[usize; D], err: f64) -> Option<[(f64, f64); D]> {
+fn krawczyk<const D: usize>(
+    g: &[SVector<f64, D>],
+    degrees: &[usize; D],
+    err: f64,
+) -> Option<[(f64, f64); D]> {
     let eps = f64::EPSILON;
     let mut strides = [1usize; D];
     for k in (0..D - 1).rev() {
@@ -714,7 +751,8 @@ fn krawczyk<const D: usize>(g: &[SVector<f64, D>], degrees: &[usize; D], err: f6
         }
     }
     let f_bound = err + (g.len() + degrees.iter().sum::<usize>() + 4) as f64 * eps * largest;
-    let mid: [[f64; D]; D] = std::array::from_fn(|f| std::array::from_fn(|k| 0.5 * (jac[f][k].0 + jac[f][k].1)));
+    let mid: [[f64; D]; D] =
+        std::array::from_fn(|f| std::array::from_fn(|k| 0.5 * (jac[f][k].0 + jac[f][k].1)));
     let y = inverse(&mid)?;
     let mut enclosure = [(0.0, 0.0); D];
     for i in 0..D {

@@ -4,8 +4,8 @@
 
 use super::patch_table::PatchTable;
 use crate::curve::{
-    Homogeneous, LocalRoot, MAX_SYSTEM, MIN_INTERSECTION_TOLERANCE, Net, PairOutcome,
-    check_spans, power_of_two_near, search_pair, span_net, span_parameter,
+    Homogeneous, LocalRoot, MAX_SYSTEM, MIN_INTERSECTION_TOLERANCE, Net, PairOutcome, check_spans,
+    power_of_two_near, search_pair, span_net, span_parameter,
 };
 use crate::{BSplineSurface, BezierSurface, Curve, Error, NurbsSurface};
 use nalgebra::Point3;
@@ -13,6 +13,10 @@ use nalgebra::Point3;
 /// Results closer than this in every parameter (relative to the span's and
 /// the patch's widths) are one intersection found twice.
 const DUPLICATE: f64 = 1e-9;
+
+/// A result with the widths of its span and patch and its parameter region
+/// (the cluster's hull for an uncertified one).
+type Entry = (CurveSurfaceHit, [f64; 3], [(f64, f64); 3]);
 
 /// One common point of a curve `C` and a surface `S`:
 /// `C(t) = S(u, v) = point`.
@@ -66,24 +70,36 @@ impl PatchTable {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(Error::InvalidTolerance { tolerance });
         }
-        let spans = curve.rational_bezier_spans().ok_or(Error::NotPiecewiseRational)?;
+        let spans = curve
+            .rational_bezier_spans()
+            .ok_or(Error::NotPiecewiseRational)?;
         check_spans(&spans)?;
         let (p, q) = self.degrees;
         let patch_box = |net: &[Homogeneous<3>]| {
             net.iter().fold(
-                (Point3::from([f64::INFINITY; 3]), Point3::from([f64::NEG_INFINITY; 3])),
+                (
+                    Point3::from([f64::INFINITY; 3]),
+                    Point3::from([f64::NEG_INFINITY; 3]),
+                ),
                 |(lo, hi), h| {
                     let x = Point3::from(h.wp / h.w);
                     (lo.inf(&x), hi.sup(&x))
                 },
             )
         };
-        let boxes: Vec<(Point3<f64>, Point3<f64>)> =
-            self.patches.iter().map(|patch| patch_box(&patch.net)).collect();
+        let boxes: Vec<(Point3<f64>, Point3<f64>)> = self
+            .patches
+            .iter()
+            .map(|patch| patch_box(&patch.net))
+            .collect();
         let magnitude = spans
             .iter()
             .flat_map(|s| s.curve.points().iter().map(|x| x.coords.amax()))
-            .chain(boxes.iter().map(|(lo, hi)| lo.coords.amax().max(hi.coords.amax())))
+            .chain(
+                boxes
+                    .iter()
+                    .map(|(lo, hi)| lo.coords.amax().max(hi.coords.amax())),
+            )
             .fold(0.0, f64::max);
         let min = MIN_INTERSECTION_TOLERANCE * magnitude;
         if tolerance < min {
@@ -98,7 +114,11 @@ impl PatchTable {
                 });
             }
         }
-        let scale = if magnitude > 0.0 { power_of_two_near(magnitude) } else { 1.0 };
+        let scale = if magnitude > 0.0 {
+            power_of_two_near(magnitude)
+        } else {
+            1.0
+        };
         let patch_nets: Vec<Net<3>> = self
             .patches
             .iter()
@@ -117,7 +137,7 @@ impl PatchTable {
                 }
             })
             .collect();
-        let mut found: Vec<(CurveSurfaceHit, [f64; 3], [(f64, f64); 3])> = Vec::new();
+        let mut found: Vec<Entry> = Vec::new();
         for span in &spans {
             let net = span_net(&span.curve, scale);
             let (lo, hi) = span.curve.bounds();
@@ -155,12 +175,17 @@ impl PatchTable {
                                 CurveSurfaceHit {
                                     t: span_parameter(span, x[0]),
                                     uv: (u, v),
-                                    point: Point3::from((on_curve.coords + on_surface.coords) * 0.5),
+                                    point: Point3::from(
+                                        (on_curve.coords + on_surface.coords) * 0.5,
+                                    ),
                                     certified,
                                 },
                                 widths,
                                 [
-                                    (span_parameter(span, hull[0].0), span_parameter(span, hull[0].1)),
+                                    (
+                                        span_parameter(span, hull[0].0),
+                                        span_parameter(span, hull[0].1),
+                                    ),
                                     (at(patch.u, hull[1].0), at(patch.u, hull[1].1)),
                                     (at(patch.v, hull[2].0), at(patch.v, hull[2].1)),
                                 ],
@@ -183,7 +208,6 @@ impl PatchTable {
             (at(x, ends.0) && at(y, ends.1)) || (at(x, ends.1) && at(y, ends.0))
         };
         let coincide = 64.0 * f64::EPSILON * magnitude;
-        type Entry = (CurveSurfaceHit, [f64; 3], [(f64, f64); 3]);
         let mut out: Vec<Entry> = Vec::new();
         for (hit, w, region) in found {
             let same = |o: &Entry| {
@@ -209,8 +233,8 @@ impl PatchTable {
                     if hit.certified && !o.0.certified {
                         *o = (hit, w, region);
                     } else if !hit.certified && !o.0.certified {
-                        for k in 0..3 {
-                            o.2[k] = (o.2[k].0.min(region[k].0), o.2[k].1.max(region[k].1));
+                        for (slot, r) in o.2.iter_mut().zip(&region) {
+                            *slot = (slot.0.min(r.0), slot.1.max(r.1));
                         }
                     }
                 }

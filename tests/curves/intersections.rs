@@ -38,7 +38,10 @@ fn check_on_curves(a: &impl Curve<2>, b: &impl Curve<2>, hits: &[CurveIntersecti
 fn assert_points(hits: &[CurveIntersection], expected: &[Point2<f64>], within: f64) {
     assert_eq!(hits.len(), expected.len(), "{hits:?} vs {expected:?}");
     for e in expected {
-        let d = hits.iter().map(|h| (h.point - e).norm()).fold(f64::INFINITY, f64::min);
+        let d = hits
+            .iter()
+            .map(|h| (h.point - e).norm())
+            .fold(f64::INFINITY, f64::min);
         assert!(d <= within, "{e} missed by {d}: {hits:?}");
     }
 }
@@ -57,7 +60,12 @@ fn circle_and_horizontal_lines_by_the_quadratic_formula() {
         // A clamped B-spline line (degree 2, two spans) and a Bézier one.
         let bs = BSpline::clamped(
             2,
-            vec![Point2::new(-3.0, y), Point2::new(-0.5, y), Point2::new(1.0, y), Point2::new(3.0, y)],
+            vec![
+                Point2::new(-3.0, y),
+                Point2::new(-0.5, y),
+                Point2::new(1.0, y),
+                Point2::new(3.0, y),
+            ],
         )
         .unwrap();
         let bz = line((-3.0, y), (3.0, y));
@@ -67,11 +75,19 @@ fn circle_and_horizontal_lines_by_the_quadratic_formula() {
         } else {
             vec![]
         };
-        for hits in [intersect_curves(&circle, &bs, TOL).unwrap(), intersect_curves(&bz, &circle, TOL).unwrap()] {
+        for hits in [
+            intersect_curves(&circle, &bs, TOL).unwrap(),
+            intersect_curves(&bz, &circle, TOL).unwrap(),
+        ] {
             assert_points(&hits, &expected, 1e-12);
             assert!(hits.iter().all(|h| h.certified), "{hits:?}");
         }
-        check_on_curves(&circle, &bs, &intersect_curves(&circle, &bs, TOL).unwrap(), 1e-12);
+        check_on_curves(
+            &circle,
+            &bs,
+            &intersect_curves(&circle, &bs, TOL).unwrap(),
+            1e-12,
+        );
     }
 }
 
@@ -86,7 +102,10 @@ fn oblique_lines_through_the_circle() {
         let (p, q) = (n * offset - d * 3.0, n * offset + d * 3.0);
         let l = line((p.x, p.y), (q.x, q.y));
         let half = (4.0 - offset * offset).sqrt();
-        let expected = [Point2::from(n * offset - d * half), Point2::from(n * offset + d * half)];
+        let expected = [
+            Point2::from(n * offset - d * half),
+            Point2::from(n * offset + d * half),
+        ];
         let hits = intersect_curves(&circle, &l, TOL).unwrap();
         assert_points(&hits, &expected, 1e-12);
         assert!(hits.iter().all(|h| h.certified));
@@ -100,11 +119,19 @@ fn lines_through_span_joins_hit_once_each() {
     let circle = Nurbs::circle(Point2::new(0.0, 0.0), 1.0).unwrap();
     let vertical = line((0.0, -2.0), (0.0, 2.0));
     let hits = intersect_curves(&circle, &vertical, TOL).unwrap();
-    assert_points(&hits, &[Point2::new(0.0, -1.0), Point2::new(0.0, 1.0)], 1e-15);
+    assert_points(
+        &hits,
+        &[Point2::new(0.0, -1.0), Point2::new(0.0, 1.0)],
+        1e-15,
+    );
     assert!(hits.iter().all(|h| h.certified));
     let horizontal = line((-2.0, 0.0), (2.0, 0.0));
     let hits = intersect_curves(&horizontal, &circle, TOL).unwrap();
-    assert_points(&hits, &[Point2::new(-1.0, 0.0), Point2::new(1.0, 0.0)], 1e-15);
+    assert_points(
+        &hits,
+        &[Point2::new(-1.0, 0.0), Point2::new(1.0, 0.0)],
+        1e-15,
+    );
     assert!((hits[0].t_a - 0.25).abs() < 1e-15 && (hits[1].t_a - 0.75).abs() < 1e-15);
 }
 
@@ -121,11 +148,21 @@ fn tangent_lines_touch_once_uncertified() {
         let hits = intersect_curves(&circle, &l, TOL).unwrap();
         assert_eq!(hits.len(), 1, "{hits:?}");
         assert!(!hits[0].certified);
-        assert!((hits[0].point - touch).norm() < 1e-5, "{:?} vs {touch}", hits[0]);
+        assert!(
+            (hits[0].point - touch).norm() < 1e-5,
+            "{:?} vs {touch}",
+            hits[0]
+        );
         // Moved off by 1e-3 outward: nothing; inward: two certified hits.
-        let out = line(((p + n * 1e-3).x, (p + n * 1e-3).y), ((q + n * 1e-3).x, (q + n * 1e-3).y));
+        let out = line(
+            ((p + n * 1e-3).x, (p + n * 1e-3).y),
+            ((q + n * 1e-3).x, (q + n * 1e-3).y),
+        );
         assert!(intersect_curves(&circle, &out, TOL).unwrap().is_empty());
-        let inside = line(((p - n * 1e-3).x, (p - n * 1e-3).y), ((q - n * 1e-3).x, (q - n * 1e-3).y));
+        let inside = line(
+            ((p - n * 1e-3).x, (p - n * 1e-3).y),
+            ((q - n * 1e-3).x, (q - n * 1e-3).y),
+        );
         let two = intersect_curves(&circle, &inside, TOL).unwrap();
         assert_eq!(two.len(), 2);
         assert!(two.iter().all(|h| h.certified));
@@ -137,7 +174,10 @@ fn tangent_lines_touch_once_uncertified() {
 fn circle_pairs_by_the_radical_line() {
     let (r1, r2) = (1.0, 0.7);
     let a = Nurbs::circle(Point2::new(0.0, 0.0), r1).unwrap();
-    for (k, d) in [0.2, 0.35, 0.5, 0.9, 1.2, 1.6, 1.69, 1.71, 2.5].iter().enumerate() {
+    for (k, d) in [0.2, 0.35, 0.5, 0.9, 1.2, 1.6, 1.69, 1.71, 2.5]
+        .iter()
+        .enumerate()
+    {
         let angle = 0.4 + k as f64;
         let u = Vector2::new(angle.cos(), angle.sin());
         let b = Nurbs::circle(Point2::from(u * *d), r2).unwrap();
@@ -186,19 +226,35 @@ fn a_cubic_and_its_shifted_reparametrized_copy_do_not_meet() {
     let c = s_cubic();
     // x is increasing along the curve: a copy moved up is disjoint.
     for dy in [1e-6, 1e-3, 0.1, 1.0] {
-        let copy = Bezier::new(c.points().iter().rev().map(|p| p + Vector2::new(0.0, dy)).collect())
-            .unwrap();
+        let copy = Bezier::new(
+            c.points()
+                .iter()
+                .rev()
+                .map(|p| p + Vector2::new(0.0, dy))
+                .collect(),
+        )
+        .unwrap();
         let hits = intersect_curves(&c, &copy, TOL).unwrap();
         assert!(hits.is_empty(), "dy = {dy}: {hits:?}");
         // The same curve as a clamped B-spline of two spans (knot inserted).
-        let spline = BSpline::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0], copy.points().to_vec())
-            .unwrap()
-            .insert_knot(0.4, 1)
-            .unwrap();
+        let spline = BSpline::new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            copy.points().to_vec(),
+        )
+        .unwrap()
+        .insert_knot(0.4, 1)
+        .unwrap();
         assert!(intersect_curves(&spline, &c, TOL).unwrap().is_empty());
     }
     // Moved sideways it crosses itself: every result is on both curves.
-    let copy = Bezier::new(c.points().iter().map(|p| p + Vector2::new(0.4, 0.0)).collect()).unwrap();
+    let copy = Bezier::new(
+        c.points()
+            .iter()
+            .map(|p| p + Vector2::new(0.4, 0.0))
+            .collect(),
+    )
+    .unwrap();
     let hits = intersect_curves(&c, &copy, TOL).unwrap();
     assert!(!hits.is_empty());
     check_on_curves(&c, &copy, &hits, 1e-12);
@@ -241,10 +297,16 @@ fn rational_spans_and_far_coordinates() {
     for (shift, scale) in [(0.0, 1.0), (1e6, 1.0), (0.0, 1e-200), (0.0, 1e90)] {
         let c = Point2::new(shift, shift);
         let circle = Nurbs::circle(c, 2.0 * scale).unwrap();
-        let l = line((shift - 3.0 * scale, shift + scale), (shift + 3.0 * scale, shift + scale));
+        let l = line(
+            (shift - 3.0 * scale, shift + scale),
+            (shift + 3.0 * scale, shift + scale),
+        );
         let hits = intersect_curves(&circle, &l, 1e-9 * (shift + 3.0 * scale)).unwrap();
         let dx = 3f64.sqrt() * scale;
-        let want = [Point2::new(shift - dx, shift + scale), Point2::new(shift + dx, shift + scale)];
+        let want = [
+            Point2::new(shift - dx, shift + scale),
+            Point2::new(shift + dx, shift + scale),
+        ];
         let size = shift.abs() + 3.0 * scale;
         assert_points(&hits, &want, 1e-14 * size);
         assert!(hits.iter().all(|h| h.certified));
@@ -291,7 +353,9 @@ fn sampled_reference(a: &Bezier<2>, b: &Bezier<2>, n: usize) -> Vec<(f64, f64)> 
                 t = (t + dt).clamp(0.0, 1.0);
             }
             if (a.eval(s) - b.eval(t)).norm() < 1e-12
-                && !roots.iter().any(|r| (r.0 - s).abs() < 1e-7 && (r.1 - t).abs() < 1e-7)
+                && !roots
+                    .iter()
+                    .any(|r| (r.0 - s).abs() < 1e-7 && (r.1 - t).abs() < 1e-7)
             {
                 roots.push((s, t));
             }
@@ -311,7 +375,9 @@ fn random_bezier_pairs_against_dense_sampling() {
         let degree = |rng: &mut Rng| 1 + rng.below(5);
         let (da, db) = (degree(&mut rng), degree(&mut rng));
         let pts = |rng: &mut Rng, d: usize| -> Vec<Point2<f64>> {
-            (0..=d).map(|_| Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0))).collect()
+            (0..=d)
+                .map(|_| Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+                .collect()
         };
         let a = Bezier::new(pts(&mut rng, da)).unwrap();
         let b = Bezier::new(pts(&mut rng, db)).unwrap();
@@ -322,7 +388,8 @@ fn random_bezier_pairs_against_dense_sampling() {
         let reference = sampled_reference(&a, &b, 600);
         // Skip configurations the sampled reference cannot resolve: roots
         // closer than 1e-3 in parameter, or crossing at a tiny angle.
-        let cross = |u: Vector2<f64>, v: Vector2<f64>| (u.x * v.y - u.y * v.x) / (u.norm() * v.norm());
+        let cross =
+            |u: Vector2<f64>, v: Vector2<f64>| (u.x * v.y - u.y * v.x) / (u.norm() * v.norm());
         let hard = reference.windows(2).any(|w| (w[0].0 - w[1].0).abs() < 1e-3)
             || reference
                 .iter()
@@ -332,21 +399,33 @@ fn random_bezier_pairs_against_dense_sampling() {
             continue;
         }
         compared += 1;
-        assert_eq!(hits.len(), reference.len(), "case {case}: {hits:?} vs {reference:?}");
+        assert_eq!(
+            hits.len(),
+            reference.len(),
+            "case {case}: {hits:?} vs {reference:?}"
+        );
         for (h, r) in hits.iter().zip(&reference) {
-            assert!((h.t_a - r.0).abs() < 1e-9 && (h.t_b - r.1).abs() < 1e-9, "case {case}: {h:?} vs {r:?}");
+            assert!(
+                (h.t_a - r.0).abs() < 1e-9 && (h.t_b - r.1).abs() < 1e-9,
+                "case {case}: {h:?} vs {r:?}"
+            );
         }
         check_on_curves(&a, &b, &hits, 1e-12);
     }
     assert!(compared >= 45, "only {compared} cases compared");
-    eprintln!("random Bézier pairs: {:.1} µs per pair", 1e6 * total_time / pairs as f64);
+    eprintln!(
+        "random Bézier pairs: {:.1} µs per pair",
+        1e6 * total_time / pairs as f64
+    );
 }
 
 #[test]
 fn rational_bezier_pairs_cross_where_both_curves_are() {
     let mut rng = Rng(99);
     for _ in 0..30 {
-        let pts: Vec<Point2<f64>> = (0..4).map(|_| Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0))).collect();
+        let pts: Vec<Point2<f64>> = (0..4)
+            .map(|_| Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+            .collect();
         let w: Vec<f64> = (0..4).map(|_| rng.range(0.2, 5.0)).collect();
         let a = RationalBezier::new(pts, w).unwrap();
         let b = s_cubic();
@@ -395,28 +474,54 @@ fn every_error_path() {
     let circle = Nurbs::circle(Point2::new(0.0, 0.0), 1.0).unwrap();
     let l = line((-2.0, 0.0), (2.0, 0.0));
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        assert!(matches!(intersect_curves(&circle, &l, bad), Err(Error::InvalidTolerance { .. })));
+        assert!(matches!(
+            intersect_curves(&circle, &l, bad),
+            Err(Error::InvalidTolerance { .. })
+        ));
     }
     let err = intersect_curves(&circle, &l, 1e-12).unwrap_err();
     match err {
-        Error::ToleranceTooSmall { min, .. } => assert!((min - 2.0 * MIN_INTERSECTION_TOLERANCE).abs() < 1e-25),
+        Error::ToleranceTooSmall { min, .. } => {
+            assert!((min - 2.0 * MIN_INTERSECTION_TOLERANCE).abs() < 1e-25)
+        }
         e => panic!("{e}"),
     }
-    assert_eq!(intersect_curves(&Parabola, &l, TOL), Err(Error::NotPiecewiseRational));
-    assert_eq!(intersect_curves(&l, &Parabola, TOL), Err(Error::NotPiecewiseRational));
+    assert_eq!(
+        intersect_curves(&Parabola, &l, TOL),
+        Err(Error::NotPiecewiseRational)
+    );
+    assert_eq!(
+        intersect_curves(&l, &Parabola, TOL),
+        Err(Error::NotPiecewiseRational)
+    );
     let span = |a: f64, b: f64| RationalBezierSpan {
         knots: (a, b),
         curve: RationalBezier::from(line((0.0, -1.0), (0.0, 1.0))),
     };
     let out_of_order = BadSpans(vec![span(1.0, 2.0), span(0.0, 1.0)]);
-    assert_eq!(intersect_curves(&out_of_order, &l, TOL), Err(Error::SpansOutOfOrder { index: 1 }));
-    assert_eq!(intersect_curves(&l, &BadSpans(vec![]), TOL), Err(Error::SpansOutOfOrder { index: 0 }));
+    assert_eq!(
+        intersect_curves(&out_of_order, &l, TOL),
+        Err(Error::SpansOutOfOrder { index: 1 })
+    );
+    assert_eq!(
+        intersect_curves(&l, &BadSpans(vec![]), TOL),
+        Err(Error::SpansOutOfOrder { index: 0 })
+    );
     // Degree 150 against degree 150 (a constant curve, so that its
     // derivatives stay finite): 151² products, more than accepted.
     let high: Vec<Point2<f64>> = vec![Point2::new(0.5, 0.5); 151];
     let high = Bezier::new(high).unwrap();
     let err = intersect_curves(&high, &high, TOL).unwrap_err();
-    assert!(matches!(err, Error::IntersectionTooLarge { coefficients: 22801, .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            Error::IntersectionTooLarge {
+                coefficients: 22801,
+                ..
+            }
+        ),
+        "{err}"
+    );
     assert!(err.to_string().contains("degrees are too high"));
 }
 
@@ -430,7 +535,13 @@ fn degenerate_curves_never_panic() {
     let off = Bezier::new(vec![Point2::new(0.5, 0.1)]).unwrap();
     assert!(intersect_curves(&off, &l, TOL).unwrap().is_empty());
     // Repeated control points (a zero derivative at the ends).
-    let cusp = Bezier::new(vec![Point2::new(0.0, -1.0), Point2::new(0.0, -1.0), Point2::new(0.0, 1.0), Point2::new(0.0, 1.0)]).unwrap();
+    let cusp = Bezier::new(vec![
+        Point2::new(0.0, -1.0),
+        Point2::new(0.0, -1.0),
+        Point2::new(0.0, 1.0),
+        Point2::new(0.0, 1.0),
+    ])
+    .unwrap();
     let across = line((-1.0, 0.25), (1.0, 0.25));
     let hits = intersect_curves(&cusp, &across, TOL).unwrap();
     assert_points(&hits, &[Point2::new(0.0, 0.25)], 1e-14);

@@ -14,8 +14,8 @@ use revolve::curve::intersect_curves;
 use revolve::nalgebra::{Point2, Point3, Vector3};
 use revolve::tensor::CurveSurfaceHit;
 use revolve::{
-    BSplineSurface, Bezier, BezierSurface, Curve, Error, Intersect, Nurbs, NurbsSurface, Ray,
-    RationalBezier, RationalBezierSpan, Surface,
+    BSplineSurface, Bezier, BezierSurface, Curve, Error, Intersect, Nurbs, NurbsSurface,
+    RationalBezier, RationalBezierSpan, Ray, Surface,
 };
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
@@ -24,7 +24,10 @@ const TOL: f64 = 1e-9;
 
 fn plane(size: f64) -> BezierSurface {
     BezierSurface::new(vec![
-        vec![Point3::new(-size, -size, 0.0), Point3::new(-size, size, 0.0)],
+        vec![
+            Point3::new(-size, -size, 0.0),
+            Point3::new(-size, size, 0.0),
+        ],
         vec![Point3::new(size, -size, 0.0), Point3::new(size, size, 0.0)],
     ])
     .unwrap()
@@ -38,7 +41,12 @@ fn mapped_circle(center: Point2<f64>, r: f64, f: impl Fn(Point2<f64>) -> Point3<
     Nurbs::new(c.degree(), c.knots().to_vec(), points, c.weights().to_vec()).unwrap()
 }
 
-fn check_on_both(curve: &impl Curve<3>, surface: &impl Surface, hits: &[CurveSurfaceHit], within: f64) {
+fn check_on_both(
+    curve: &impl Curve<3>,
+    surface: &impl Surface,
+    hits: &[CurveSurfaceHit],
+    within: f64,
+) {
     for h in hits {
         let c = curve.eval(h.t);
         let s = surface.eval(h.uv.0, h.uv.1);
@@ -50,7 +58,10 @@ fn check_on_both(curve: &impl Curve<3>, surface: &impl Surface, hits: &[CurveSur
 fn assert_points(hits: &[CurveSurfaceHit], expected: &[Point3<f64>], within: f64) {
     assert_eq!(hits.len(), expected.len(), "{hits:?} vs {expected:?}");
     for e in expected {
-        let d = hits.iter().map(|h| (h.point - e).norm()).fold(f64::INFINITY, f64::min);
+        let d = hits
+            .iter()
+            .map(|h| (h.point - e).norm())
+            .fold(f64::INFINITY, f64::min);
         assert!(d <= within, "{e} missed by {d}: {hits:?}");
     }
 }
@@ -63,7 +74,9 @@ fn tilted_ellipses_cross_the_plane_where_z_vanishes() {
         let lift = -2.0 + 4.0 * k as f64 / 20.0;
         let slope = 1.3;
         let (cx, cy, r) = (0.2, -0.1, 1.5);
-        let curve = mapped_circle(Point2::new(cx, cy), r, |q| Point3::new(q.x, q.y, slope * q.y + lift));
+        let curve = mapped_circle(Point2::new(cx, cy), r, |q| {
+            Point3::new(q.x, q.y, slope * q.y + lift)
+        });
         let hits = p.intersect_curve(&curve, TOL).unwrap();
         // On the circle, y = −lift/slope: x = cx ± √(r² − (y − cy)²).
         let y = -lift / slope;
@@ -93,7 +106,9 @@ fn a_helix_like_spiral_crosses_the_plane_at_known_points() {
     // y/2 + x/4 + c = 0 meets the circle.
     let p = plane(3.0);
     for c in [-0.5, -0.1, 0.0, 0.2, 0.4] {
-        let curve = mapped_circle(Point2::origin(), 1.0, |q| Point3::new(q.x, q.y, q.y / 2.0 + q.x / 4.0 + c));
+        let curve = mapped_circle(Point2::origin(), 1.0, |q| {
+            Point3::new(q.x, q.y, q.y / 2.0 + q.x / 4.0 + c)
+        });
         let hits = p.intersect_curve(&curve, TOL).unwrap();
         // Line n·q = −c with n = (1/4, 1/2): foot −c·n/|n|², half-chord.
         let n = Vector3::new(0.25, 0.5, 0.0);
@@ -101,7 +116,10 @@ fn a_helix_like_spiral_crosses_the_plane_at_known_points() {
         let foot: Vector3<f64> = -n * (c / nn);
         let half = (1.0 - foot.norm_squared()).sqrt();
         let along = Vector3::new(-n.y, n.x, 0.0).normalize();
-        let expected = [Point3::from(foot + along * half), Point3::from(foot - along * half)];
+        let expected = [
+            Point3::from(foot + along * half),
+            Point3::from(foot - along * half),
+        ];
         assert_points(&hits, &expected, 1e-12);
         check_on_both(&curve, &p, &hits, 1e-12);
     }
@@ -111,10 +129,18 @@ fn a_helix_like_spiral_crosses_the_plane_at_known_points() {
     // degree 3: b₀ = 0.24, b₁ = 0.24 − 1.1/3, b₂ = 0.24 − 2.2/3 + 1/3, b₃ = 0.14.
     let z = [0.24, 0.24 - 1.1 / 3.0, 0.24 - 2.2 / 3.0 + 1.0 / 3.0, 0.14].map(|z| 4.0 * z);
     let xy = [(1.0, 0.0), (1.0, 1.2), (-1.0, 1.2), (-1.0, 0.0)];
-    let spiral = Bezier::new((0..4).map(|i| Point3::new(xy[i].0, xy[i].1, z[i])).collect()).unwrap();
+    let spiral = Bezier::new(
+        (0..4)
+            .map(|i| Point3::new(xy[i].0, xy[i].1, z[i]))
+            .collect(),
+    )
+    .unwrap();
     let hits = p.intersect_curve(&spiral, TOL).unwrap();
     assert_eq!(hits.len(), 2, "{hits:?}");
-    assert!((hits[0].t - 0.3).abs() < 1e-14 && (hits[1].t - 0.8).abs() < 1e-14, "{hits:?}");
+    assert!(
+        (hits[0].t - 0.3).abs() < 1e-14 && (hits[1].t - 0.8).abs() < 1e-14,
+        "{hits:?}"
+    );
     assert!(hits.iter().all(|h| h.certified && h.point.z.abs() < 1e-15));
 }
 
@@ -127,14 +153,25 @@ fn sphere(r: f64) -> NurbsSurface {
     let points = profile
         .points()
         .iter()
-        .map(|a| turn.points().iter().map(|c| Point3::new(a.x * c.x, a.x * c.y, a.y)).collect())
+        .map(|a| {
+            turn.points()
+                .iter()
+                .map(|c| Point3::new(a.x * c.x, a.x * c.y, a.y))
+                .collect()
+        })
         .collect();
     let weights = profile
         .weights()
         .iter()
         .map(|wa| turn.weights().iter().map(|wc| wa * wc).collect())
         .collect();
-    NurbsSurface::new((2, 2), (profile.knots().to_vec(), turn.knots().to_vec()), points, weights).unwrap()
+    NurbsSurface::new(
+        (2, 2),
+        (profile.knots().to_vec(), turn.knots().to_vec()),
+        points,
+        weights,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -143,7 +180,14 @@ fn horizontal_circles_cross_a_nurbs_sphere_by_the_law_of_cosines() {
     let s = sphere(r);
     let started = Instant::now();
     let mut runs = 0;
-    for (c, rho, h) in [(1.0, 1.5, 0.3), (0.5, 1.0, -1.2), (1.5, 0.7, 0.9), (2.5, 1.0, 0.0), (0.2, 0.5, 0.1), (1.0, 0.8, 1.0)] {
+    for (c, rho, h) in [
+        (1.0, 1.5, 0.3),
+        (0.5, 1.0, -1.2),
+        (1.5, 0.7, 0.9),
+        (2.5, 1.0, 0.0),
+        (0.2, 0.5, 0.1),
+        (1.0, 0.8, 1.0),
+    ] {
         let curve = mapped_circle(Point2::new(c, 0.0), rho, |q| Point3::new(q.x, q.y, h));
         let hits = s.intersect_curve(&curve, TOL).unwrap();
         runs += 1;
@@ -172,7 +216,9 @@ fn horizontal_circles_cross_a_nurbs_sphere_by_the_law_of_cosines() {
 fn a_circle_tangent_to_the_plane_touches_once() {
     let p = plane(3.0);
     // A vertical circle of radius 1 resting on z = 0 at (0.3, 0.2, 0).
-    let curve = mapped_circle(Point2::new(0.0, 1.0), 1.0, |q| Point3::new(0.3, 0.2 + q.x, q.y));
+    let curve = mapped_circle(Point2::new(0.0, 1.0), 1.0, |q| {
+        Point3::new(0.3, 0.2 + q.x, q.y)
+    });
     let hits = p.intersect_curve(&curve, TOL).unwrap();
     assert_eq!(hits.len(), 1, "{hits:?}");
     assert!(!hits[0].certified);
@@ -193,11 +239,23 @@ fn lines_across_a_bicubic_patch_agree_with_the_ray_intersector() {
         })
         .collect();
     let patch = BezierSurface::new(grid).unwrap();
-    let bspline = BSplineSurface::new((3, 3), (vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]), patch.points().to_vec()).unwrap();
+    let bspline = BSplineSurface::new(
+        (3, 3),
+        (
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+        ),
+        patch.points().to_vec(),
+    )
+    .unwrap();
     let mut compared = 0;
     for k in 0..40 {
         let a = Point3::new(0.2 + 0.06 * k as f64, 0.3 + 0.05 * k as f64, 2.0);
-        let b = Point3::new(2.8 - 0.05 * k as f64, 0.1 + 0.07 * k as f64, -2.0 + 0.02 * k as f64);
+        let b = Point3::new(
+            2.8 - 0.05 * k as f64,
+            0.1 + 0.07 * k as f64,
+            -2.0 + 0.02 * k as f64,
+        );
         let line = Bezier::new(vec![a, b]).unwrap();
         let hits = patch.intersect_curve(&line, TOL).unwrap();
         let again = bspline.intersect_curve(&line, TOL).unwrap();
@@ -221,19 +279,41 @@ fn lines_across_a_bicubic_patch_agree_with_the_ray_intersector() {
 #[test]
 fn crossings_on_patch_edges_and_span_joins_are_reported_once() {
     let grid: Vec<Vec<Point3<f64>>> = (0..4)
-        .map(|i| (0..4).map(|j| Point3::new(i as f64, j as f64, 0.0)).collect())
+        .map(|i| {
+            (0..4)
+                .map(|j| Point3::new(i as f64, j as f64, 0.0))
+                .collect()
+        })
         .collect();
-    let s = BSplineSurface::new((1, 1), (vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0], vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0]), grid).unwrap(); // nine patches
+    let s = BSplineSurface::new(
+        (1, 1),
+        (
+            vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0],
+            vec![0.0, 0.0, 1.0, 2.0, 3.0, 3.0],
+        ),
+        grid,
+    )
+    .unwrap(); // nine patches
     // Through the grid's interior vertex (1, 2, 0), where four patches meet.
-    let line = Bezier::new(vec![Point3::new(1.0, 2.0, 1.0), Point3::new(1.0, 2.0, -1.0)]).unwrap();
+    let line = Bezier::new(vec![
+        Point3::new(1.0, 2.0, 1.0),
+        Point3::new(1.0, 2.0, -1.0),
+    ])
+    .unwrap();
     let hits = s.intersect_curve(&line, TOL).unwrap();
     assert_eq!(hits.len(), 1, "{hits:?}");
     assert!(hits[0].certified && (hits[0].t - 0.5).abs() < 1e-15);
     // A circle whose span joins lie on the plane: z = y, crossing at y = 0
     // where its spans join (angles 0 and π).
-    let curve = mapped_circle(Point2::new(1.5, 0.0), 1.0, |q| Point3::new(q.x, q.y + 1.5, q.y));
+    let curve = mapped_circle(Point2::new(1.5, 0.0), 1.0, |q| {
+        Point3::new(q.x, q.y + 1.5, q.y)
+    });
     let hits = s.intersect_curve(&curve, TOL).unwrap();
-    assert_points(&hits, &[Point3::new(0.5, 1.5, 0.0), Point3::new(2.5, 1.5, 0.0)], 1e-15);
+    assert_points(
+        &hits,
+        &[Point3::new(0.5, 1.5, 0.0), Point3::new(2.5, 1.5, 0.0)],
+        1e-15,
+    );
 }
 
 /// A curve known only by its formula.
@@ -271,19 +351,39 @@ impl Curve<3> for BadSpans {
 #[test]
 fn every_error_path() {
     let p = plane(2.0);
-    let line = Bezier::new(vec![Point3::new(0.0, 0.0, -1.0), Point3::new(0.0, 0.0, 1.0)]).unwrap();
+    let line = Bezier::new(vec![
+        Point3::new(0.0, 0.0, -1.0),
+        Point3::new(0.0, 0.0, 1.0),
+    ])
+    .unwrap();
     for bad in [0.0, -1e-9, f64::NAN, f64::INFINITY] {
-        assert!(matches!(p.intersect_curve(&line, bad), Err(Error::InvalidTolerance { .. })));
+        assert!(matches!(
+            p.intersect_curve(&line, bad),
+            Err(Error::InvalidTolerance { .. })
+        ));
     }
-    assert!(matches!(p.intersect_curve(&line, 1e-13), Err(Error::ToleranceTooSmall { .. })));
-    assert_eq!(p.intersect_curve(&Helix, TOL), Err(Error::NotPiecewiseRational));
+    assert!(matches!(
+        p.intersect_curve(&line, 1e-13),
+        Err(Error::ToleranceTooSmall { .. })
+    ));
+    assert_eq!(
+        p.intersect_curve(&Helix, TOL),
+        Err(Error::NotPiecewiseRational)
+    );
     let span = |a: f64, b: f64| RationalBezierSpan {
         knots: (a, b),
         curve: RationalBezier::from(line.clone()),
     };
-    assert_eq!(p.intersect_curve(&BadSpans(vec![span(0.0, 0.0)]), TOL), Err(Error::SpansOutOfOrder { index: 0 }));
+    assert_eq!(
+        p.intersect_curve(&BadSpans(vec![span(0.0, 0.0)]), TOL),
+        Err(Error::SpansOutOfOrder { index: 0 })
+    );
     // A line lying in the plane: the curve is on the surface.
-    let inside = Bezier::new(vec![Point3::new(-1.0, -0.5, 0.0), Point3::new(1.0, 0.5, 0.0)]).unwrap();
+    let inside = Bezier::new(vec![
+        Point3::new(-1.0, -0.5, 0.0),
+        Point3::new(1.0, 0.5, 0.0),
+    ])
+    .unwrap();
     let started = Instant::now();
     let err = p.intersect_curve(&inside, TOL).unwrap_err();
     assert!(matches!(err, Error::CurveOnSurface { .. }), "{err}");
