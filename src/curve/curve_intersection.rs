@@ -107,7 +107,11 @@ pub struct CurveIntersection {
 /// the other curve is a result). On a closed curve (its two ends one point,
 /// as a full circle) an intersection at the seam is reported once, at
 /// either end. A root just outside a span, by at most
-/// `1e-12` of its width, counts as at its end. A curve of degree 0 (a
+/// `1e-12` of its width, counts as at its end. Two results closer than
+/// `1e-9` of their spans' widths in both parameters are one (found twice,
+/// from neighbouring boxes or spans); an uncertified result within four
+/// times the tolerance of another result, or whose cluster touches
+/// another uncertified cluster, is merged into it. A curve of degree 0 (a
 /// point) is never certified. Work is bounded: at most 2¹⁸ boxes and 2¹³
 /// undecided leaves per pair of spans, boxes at most 48 halvings deep.
 ///

@@ -521,11 +521,13 @@ fn representative<const D: usize>(
     b: &Net<D>,
     cluster: &[[(f64, f64); D]],
 ) -> LocalRoot<D> {
-    let mut best = (f64::INFINITY, [0.5; D]);
+    let centre =
+        |bx: &[(f64, f64); D]| -> [f64; D] { std::array::from_fn(|k| 0.5 * (bx[k].0 + bx[k].1)) };
+    let mut best = (f64::INFINITY, centre(&cluster[0]));
     for bx in cluster {
-        let x: [f64; D] = std::array::from_fn(|k| 0.5 * (bx[k].0 + bx[k].1));
+        let x = centre(bx);
         let gap = residual(a, b, &x).map_or(f64::INFINITY, |r| r.0.norm());
-        if gap < best.0 || best.0.is_infinite() && gap.is_infinite() && best.1 == [0.5; D] {
+        if gap < best.0 {
             best = (gap, x);
         }
     }
@@ -653,10 +655,14 @@ fn certify<const D: usize>(
     });
     let x = polish(a, b, &k, &wide);
     let slack = 1e-12;
-    if x.iter().any(|&v| !(-slack..=1.0 + slack).contains(&v)) {
-        // The one root of the widened box lies outside the pieces: none in
-        // the box (the root belongs to a neighbouring span, or to none).
-        return Some(None);
+    let inside = |v: f64| (-slack..=1.0 + slack).contains(&v);
+    if !x.iter().all(|&v| inside(v)) {
+        // The one root of the widened box lies in `K`: if `K` misses the
+        // pieces' parameters the box holds none (the root belongs to a
+        // neighbouring span, or to none); else the polish did not settle
+        // where it is, and smaller boxes decide.
+        let misses = k.iter().any(|&(lo, hi)| hi < -slack || lo > 1.0 + slack);
+        return misses.then_some(None);
     }
     let x = x.map(|v| v.clamp(0.0, 1.0));
     Some(Some(LocalRoot {
