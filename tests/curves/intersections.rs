@@ -546,3 +546,85 @@ fn degenerate_curves_never_panic() {
     let hits = intersect_curves(&cusp, &across, TOL).unwrap();
     assert_points(&hits, &[Point2::new(0.0, 0.25)], 1e-14);
 }
+
+#[test]
+fn random_rational_pairs_never_panic_and_certified_results_are_true() {
+    let mut rng = Rng(0xfeed);
+    let started = Instant::now();
+    for case in 0..80 {
+        let curve = |rng: &mut Rng| {
+            let d = 1 + rng.below(6);
+            let pts: Vec<Point2<f64>> = (0..=d)
+                .map(|_| Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+                .collect();
+            // Log-uniform weights in [1e-3, 1e3].
+            let w: Vec<f64> = (0..=d).map(|_| rng.range(-6.9, 6.9).exp()).collect();
+            RationalBezier::new(pts, w).unwrap()
+        };
+        let (a, b) = (curve(&mut rng), curve(&mut rng));
+        let hits = intersect_curves(&a, &b, TOL).unwrap();
+        for h in &hits {
+            assert!(h.t_a.is_finite() && h.t_b.is_finite(), "case {case}: {h:?}");
+            assert!((0.0..=1.0).contains(&h.t_a) && (0.0..=1.0).contains(&h.t_b));
+            let gap = (a.eval(h.t_a) - b.eval(h.t_b)).norm();
+            if h.certified {
+                assert!(gap < 1e-12, "case {case}: {h:?} gap {gap}");
+            } else {
+                assert!(gap < 1e-6, "case {case}: {h:?} gap {gap}");
+            }
+        }
+    }
+    assert!(started.elapsed().as_secs_f64() < 20.0);
+}
+
+#[test]
+fn near_coincident_curves_finish_quickly() {
+    let c = s_cubic();
+    for dy in [1e-13, 1e-10, 1e-8, 1e-6] {
+        let copy = Bezier::new(
+            c.points()
+                .iter()
+                .map(|p| p + Vector2::new(0.0, dy))
+                .collect(),
+        )
+        .unwrap();
+        let started = Instant::now();
+        let result = intersect_curves(&c, &copy, TOL);
+        let elapsed = started.elapsed().as_secs_f64();
+        match result {
+            // Within the tolerance: an overlap.
+            Err(Error::CurvesOverlap { .. }) => assert!(dy < TOL, "dy = {dy}"),
+            Ok(hits) => assert!(hits.is_empty() && dy > TOL, "dy = {dy}: {hits:?}"),
+            Err(e) => panic!("dy = {dy}: {e}"),
+        }
+        assert!(elapsed < 10.0, "dy = {dy}: {elapsed} s");
+        eprintln!("copy moved by {dy:e}: {:.2} ms", 1e3 * elapsed);
+    }
+}
+
+#[test]
+fn many_crossings_of_a_wave_and_a_line() {
+    // A clamped cubic B-spline zig-zag crossing y = 0 between each pair of
+    // control points of opposite sign: every crossing found, certified.
+    let n = 40;
+    let pts: Vec<Point2<f64>> = (0..n)
+        .map(|i| Point2::new(i as f64 / 4.0, if i % 2 == 0 { 1.0 } else { -1.0 }))
+        .collect();
+    let wave = BSpline::clamped(3, pts).unwrap();
+    let axis = line((-1.0, 0.0), (11.0, 0.0));
+    let started = Instant::now();
+    let hits = intersect_curves(&wave, &axis, 1e-8).unwrap();
+    let elapsed = started.elapsed().as_secs_f64();
+    assert!(hits.len() >= n - 3, "{}", hits.len());
+    assert!(hits.iter().all(|h| h.certified && h.point.y.abs() < 1e-14));
+    // The sign of y alternates between consecutive crossings.
+    for w in hits.windows(2) {
+        let mid = wave.eval(0.5 * (w[0].t_a + w[1].t_a));
+        assert!(mid.y.abs() > 1e-3);
+    }
+    eprintln!(
+        "{} crossings of a 37-span wave: {:.2} ms",
+        hits.len(),
+        1e3 * elapsed
+    );
+}
