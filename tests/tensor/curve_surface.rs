@@ -399,3 +399,64 @@ fn every_error_path() {
     let l = Bezier::new(vec![Point2::new(-2.0, 0.5), Point2::new(2.0, 0.5)]).unwrap();
     assert_eq!(intersect_curves(&c, &l, TOL).unwrap().len(), 2);
 }
+
+#[test]
+fn random_cubics_against_random_bicubic_patches() {
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let started = Instant::now();
+    let mut total = 0;
+    for case in 0..40 {
+        let grid: Vec<Vec<Point3<f64>>> = (0..4)
+            .map(|i| {
+                (0..4)
+                    .map(|j| Point3::new(i as f64 / 1.5 - 1.0, j as f64 / 1.5 - 1.0, 0.6 * next()))
+                    .collect()
+            })
+            .collect();
+        let patch = BezierSurface::new(grid).unwrap();
+        let curve = Bezier::new(
+            (0..4)
+                .map(|_| Point3::new(next(), next(), 1.5 * next()))
+                .collect(),
+        )
+        .unwrap();
+        let hits = patch.intersect_curve(&curve, TOL).unwrap();
+        total += hits.len();
+        for h in &hits {
+            let gap = (curve.eval(h.t) - patch.eval(h.uv.0, h.uv.1)).norm();
+            let within = if h.certified { 1e-12 } else { 1e-6 };
+            assert!(gap < within, "case {case}: {h:?} gap {gap}");
+        }
+    }
+    assert!(total > 10);
+    eprintln!(
+        "cubic against bicubic patch: {:.2} ms per pair",
+        1e3 * started.elapsed().as_secs_f64() / 40.0
+    );
+}
+
+#[test]
+fn a_great_circle_lies_on_the_sphere() {
+    let s = sphere(2.0);
+    let equator = mapped_circle(Point2::origin(), 2.0, |q| Point3::new(q.x, q.y, 0.0));
+    let started = Instant::now();
+    let err = s.intersect_curve(&equator, TOL).unwrap_err();
+    assert!(matches!(err, Error::CurveOnSurface { .. }), "{err}");
+    assert!(started.elapsed().as_secs_f64() < 30.0);
+    // Tilted and moved off centre it crosses twice.
+    let tilted = mapped_circle(Point2::origin(), 2.0, |q| {
+        Point3::new(q.x + 0.5, q.y, 0.3 * q.x)
+    });
+    let hits = s.intersect_curve(&tilted, TOL).unwrap();
+    assert_eq!(hits.len(), 2, "{hits:?}");
+    assert!(
+        hits.iter()
+            .all(|h| h.certified && (h.point.coords.norm() - 2.0).abs() < 1e-12)
+    );
+}
