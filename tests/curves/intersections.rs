@@ -628,3 +628,39 @@ fn many_crossings_of_a_wave_and_a_line() {
         1e3 * elapsed
     );
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, ..Default::default() })]
+
+    /// A random line segment against a random circle: the hits are the
+    /// quadratic formula's roots inside the segment (configurations within
+    /// 1e-6 of a tangency or of a segment end are left out).
+    #[test]
+    fn segments_against_circles_match_the_quadratic_formula(
+        cx in -2.0..2.0f64, cy in -2.0..2.0f64, r in 0.1..3.0f64,
+        px in -4.0..4.0f64, py in -4.0..4.0f64, qx in -4.0..4.0f64, qy in -4.0..4.0f64,
+    ) {
+        let (p, q) = (Point2::new(px, py), Point2::new(qx, qy));
+        proptest::prop_assume!((q - p).norm() > 1e-3);
+        let circle = Nurbs::circle(Point2::new(cx, cy), r).unwrap();
+        let seg = line((px, py), (qx, qy));
+        // |p + s(q − p) − c|² = r²: a s² + b s + k = 0.
+        let d = q - p;
+        let f = p - Point2::new(cx, cy);
+        let (a, b, k) = (d.norm_squared(), 2.0 * f.dot(&d), f.norm_squared() - r * r);
+        let disc = b * b - 4.0 * a * k;
+        proptest::prop_assume!(disc.abs() > 1e-6);
+        let mut roots = Vec::new();
+        if disc > 0.0 {
+            for s in [(-b - disc.sqrt()) / (2.0 * a), (-b + disc.sqrt()) / (2.0 * a)] {
+                proptest::prop_assume!((s.abs() > 1e-6) && ((s - 1.0).abs() > 1e-6));
+                if (0.0..=1.0).contains(&s) {
+                    roots.push(p + d * s);
+                }
+            }
+        }
+        let hits = intersect_curves(&circle, &seg, TOL).unwrap();
+        assert_points(&hits, &roots, 1e-11);
+        proptest::prop_assert!(hits.iter().all(|h| h.certified));
+    }
+}
