@@ -514,6 +514,38 @@ pub enum Error {
         /// The column (unknown) without a usable pivot.
         column: usize,
     },
+    // Intersections of curves with curves and with surfaces.
+    /// Two curves run within the tolerance of each other along a stretch
+    /// (they overlap there), so their intersections are not isolated points
+    /// ([`intersect_curves`](crate::curve::intersect_curves)). The ranges
+    /// are the parameters of the part of the stretch found.
+    CurvesOverlap {
+        /// The range of the first curve's parameter.
+        a: (f64, f64),
+        /// The range of the second curve's parameter.
+        b: (f64, f64),
+    },
+    /// A curve runs within the tolerance of a surface along a stretch (it
+    /// lies on the surface there), so its intersections with the surface
+    /// are not isolated points. The ranges are those of the part found.
+    CurveOnSurface {
+        /// The range of the curve's parameter.
+        t: (f64, f64),
+        /// The range of the surface's first parameter.
+        u: (f64, f64),
+        /// The range of the surface's second parameter.
+        v: (f64, f64),
+    },
+    /// An intersection of two pieces (two curve spans, or a curve span and a
+    /// surface patch) would need a system of more Bézier coefficients
+    /// (products of the pieces' control points) than the search accepts:
+    /// the degrees are too high.
+    IntersectionTooLarge {
+        /// The number of coefficients the system would have.
+        coefficients: usize,
+        /// The largest number accepted.
+        max: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -916,6 +948,33 @@ impl fmt::Display for Error {
                 f,
                 "the interpolation or fitting system is singular to working precision at \
                  unknown {column}"
+            ),
+            Error::CurvesOverlap { a, b } => write!(
+                f,
+                "the curves overlap (run within the tolerance of each other) for the first \
+                 curve's parameters {} to {} and the second's {} to {}: their intersections \
+                 are not isolated points",
+                Num(a.0),
+                Num(a.1),
+                Num(b.0),
+                Num(b.1)
+            ),
+            Error::CurveOnSurface { t, u, v } => write!(
+                f,
+                "the curve lies on the surface (within the tolerance) for curve parameters {} \
+                 to {}, surface parameters u {} to {}, v {} to {}: its intersections with the \
+                 surface are not isolated points",
+                Num(t.0),
+                Num(t.1),
+                Num(u.0),
+                Num(u.1),
+                Num(v.0),
+                Num(v.1)
+            ),
+            Error::IntersectionTooLarge { coefficients, max } => write!(
+                f,
+                "intersecting these pieces needs {coefficients} products of control points, \
+                 more than the {max} accepted: the degrees are too high"
             ),
         }
     }

@@ -55,6 +55,13 @@
 //!   the surface has polynomial or rational pieces (a revolution through its
 //!   profile's certified nearest point, the tensor kinds by a branch and
 //!   bound over Bézier pieces with a second-order bound);
+//! - intersections of curves: [`curve::intersect_curves`] (two planar
+//!   curves) and `intersect_curve` on the tensor kinds
+//!   ([`BezierSurface::intersect_curve`] and the others: a space curve and a
+//!   surface), every common point by subdivision with separating-direction
+//!   tests and Krawczyk's test, polished by Newton's method: none missed,
+//!   transversal crossings certified, tangencies reported once as
+//!   uncertified, overlaps an error;
 //! - [`Bvh`]: a bounding-volume hierarchy over boxed items (binned surface
 //!   area heuristic, nearest-first traversal, [`Walk`] for rays side by
 //!   side), the one the patch search uses and the ray caster builds its

@@ -10,6 +10,7 @@ mod bezier;
 mod bspline;
 mod constructions;
 mod elevate;
+mod intersections;
 mod nurbs;
 mod properties;
 mod queries;

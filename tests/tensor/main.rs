@@ -11,6 +11,7 @@
 mod bezier_patches;
 mod constructions;
 mod constructions_surfaces;
+mod curve_surface;
 mod nearest;
 mod patch_hard_cases;
 mod patch_intersect;
