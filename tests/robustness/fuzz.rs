@@ -21,6 +21,8 @@
 
 use revolve_testkit as common;
 
+mod constructions;
+
 use common::Rng;
 use revolve::nalgebra::{Isometry3, Point, Point2, Point3, SVector, Unit, Vector2, Vector3};
 use revolve::{

@@ -1,0 +1,254 @@
+//! The constructions of curves and surfaces and the intersections between
+//! curves and surfaces, fed the fuzzer's inputs (extreme scales, repeated
+//! and NaN points, odd degrees and counts): no panic, no hang, and every
+//! result that comes back `Ok` holds finite values and keeps its promise
+//! where a cheap check can tell (an interpolating curve passes through its
+//! end points, a split half starts where the surface does, an
+//! intersection point lies on both curves to within the size).
+
+use super::{Fuzz, control_grid, finite_point, fuzz, parameter};
+use revolve::curve::intersect_curves;
+use revolve::nalgebra::{Affine3, Matrix4, Point2, Point3, Vector3};
+use revolve::{
+    BSpline, BSplineSurface, Curve, Intersect, Nurbs, NurbsSurface, Revolution, Surface,
+};
+
+/// Seeds 0..6 000 (a few seconds).
+#[test]
+fn fuzz_constructions() {
+    fuzz("constructions", 0..6_000, |f| match f.below(4) {
+        0 => curves_through_points(f),
+        1 => surfaces_from_curves(f),
+        2 => surface_operations(f),
+        _ => intersections(f),
+    });
+}
+
+/// A 3D NURBS curve of the fuzzer's points, knots and weights (`None` when
+/// the constructor refuses them).
+fn nurbs_curve(f: &mut Fuzz) -> Option<Nurbs<3>> {
+    let n = 2 + f.below(6);
+    let degree = f.below(n.min(4)) + usize::from(f.chance(20));
+    let scale = f.scale();
+    let points = f.points::<3>(n, scale);
+    let knots = if f.chance(3) {
+        f.knots(n, degree)
+    } else {
+        revolve_knots(n, degree)
+    };
+    let weights = f.weights(n);
+    f.call("Nurbs::new", || Nurbs::new(degree, knots, points, weights))?
+        .ok()
+}
+
+/// Clamped uniform knots on `[0, 1]` for `n` points of degree `degree`.
+fn revolve_knots(n: usize, degree: usize) -> Vec<f64> {
+    let inner = n.saturating_sub(degree + 1);
+    let mut k = vec![0.0; degree + 1];
+    k.extend((1..=inner).map(|i| i as f64 / (inner + 1) as f64));
+    k.extend(vec![1.0; degree + 1]);
+    k
+}
+
+/// Interpolation and fitting through the fuzzer's points.
+fn curves_through_points(f: &mut Fuzz) {
+    let n = f.count().min(200);
+    let scale = f.scale();
+    let points = f.points::<2>(n, scale);
+    let degree = f.below(6);
+    if let Some(Ok(c)) = f.call("BSpline::interpolate", || {
+        BSpline::interpolate(degree, &points)
+    }) {
+        let (a, b) = c.domain();
+        let (first, last) = (c.eval(a), c.eval(b));
+        let size = points
+            .iter()
+            .fold(0.0_f64, |m, p| m.max(p.coords.amax()))
+            .max(f64::MIN_POSITIVE);
+        f.check(
+            (first - points[0]).amax() <= 1e-9 * size
+                && (last - points[n - 1]).amax() <= 1e-9 * size,
+            "BSpline::interpolate",
+            || {
+                format!(
+                    "ends {first:?} {last:?} for {:?} … {:?}",
+                    points[0],
+                    points[n - 1]
+                )
+            },
+        );
+    }
+    let control = f.below(n + 3);
+    if let Some(Ok(c)) = f.call("BSpline::fit", || BSpline::fit(degree, &points, control)) {
+        let t = parameter(f, c.domain());
+        let p = c.eval(t);
+        f.check(finite_point(&p), "BSpline::fit", || format!("{p:?} at {t}"));
+    }
+    let rows = 1 + f.below(5);
+    let cols = 1 + f.below(5);
+    let grid = control_grid(f, rows, cols);
+    let degrees = (f.below(4), f.below(4));
+    if let Some(Ok(s)) = f.call("BSplineSurface::interpolate", || {
+        BSplineSurface::interpolate(degrees, grid.clone())
+    }) {
+        surface_point_check(f, &s, "BSplineSurface::interpolate");
+    }
+}
+
+/// Ruled, extruded, swept and lofted surfaces of the fuzzer's curves.
+fn surfaces_from_curves(f: &mut Fuzz) {
+    let (Some(a), Some(b)) = (nurbs_curve(f), nurbs_curve(f)) else {
+        return;
+    };
+    if let Some(Ok(s)) = f.call("NurbsSurface::ruled", || NurbsSurface::ruled(&a, &b)) {
+        surface_point_check(f, &s, "NurbsSurface::ruled");
+    }
+    let v = Vector3::new(f.number(), f.number(), f.number());
+    if let Some(Ok(s)) = f.call("NurbsSurface::extrude", || NurbsSurface::extrude(&a, v)) {
+        surface_point_check(f, &s, "NurbsSurface::extrude");
+    }
+    if let Some(Ok(s)) = f.call("NurbsSurface::sweep", || NurbsSurface::sweep(&a, &b)) {
+        surface_point_check(f, &s, "NurbsSurface::sweep");
+    }
+    let mut sections = vec![a, b];
+    if let Some(c) = nurbs_curve(f) {
+        sections.push(c);
+    }
+    let degree_v = f.below(4);
+    if let Some(Ok(s)) = f.call("NurbsSurface::loft", || {
+        NurbsSurface::loft(&sections, degree_v)
+    }) {
+        surface_point_check(f, &s, "NurbsSurface::loft");
+    }
+}
+
+/// Isocurves, splits and affine maps of a NURBS surface of the fuzzer's
+/// grid, and the NURBS form of a revolution.
+fn surface_operations(f: &mut Fuzz) {
+    let rows = 1 + f.below(4);
+    let cols = 1 + f.below(4);
+    let grid = control_grid(f, rows, cols);
+    let (p, q) = (f.below(rows.max(1)), f.below(cols.max(1)));
+    let weights: Vec<Vec<f64>> = grid.iter().map(|row| f.weights(row.len())).collect();
+    let knots = (revolve_knots(rows, p), revolve_knots(cols, q));
+    let Some(Ok(s)) = f.call("NurbsSurface::new", || {
+        NurbsSurface::new((p, q), knots, grid, weights)
+    }) else {
+        return;
+    };
+    let [du, dv] = s.domain();
+    let (u, v) = (parameter(f, du), parameter(f, dv));
+    if let Some(Ok(c)) = f.call("NurbsSurface::isocurve_u", || s.isocurve_u(u)) {
+        let t = parameter(f, c.domain());
+        let (on_curve, on_surface) = (c.eval(t), s.eval(u, t));
+        // The size of the coordinates (a surface collapsed to a point has
+        // no extent, but its points still round at their magnitude).
+        let b = s.bounds();
+        let size = b
+            .min
+            .coords
+            .amax()
+            .max(b.max.coords.amax())
+            .max(f64::MIN_POSITIVE);
+        f.check(
+            (on_curve - on_surface).norm() <= 1e-9 * size,
+            "NurbsSurface::isocurve_u",
+            || format!("at ({u}, {t}): {on_curve:?} vs {on_surface:?}"),
+        );
+    }
+    if let Some(Ok((low, high))) = f.call("NurbsSurface::split_v", || s.split_v(v)) {
+        surface_point_check(f, &low, "NurbsSurface::split_v");
+        surface_point_check(f, &high, "NurbsSurface::split_v");
+    }
+    let m = Matrix4::from_fn(|i, j| match (i, j) {
+        (3, 3) => 1.0,
+        (3, _) => 0.0,
+        _ => f.number(),
+    });
+    let map = Affine3::from_matrix_unchecked(m);
+    if let Some(Ok(t)) = f.call("NurbsSurface::try_transformed", || s.try_transformed(&map)) {
+        surface_point_check(f, &t, "NurbsSurface::try_transformed");
+    }
+    let n = 2 + f.below(5);
+    let scale = f.scale();
+    let profile_points = f.points::<2>(n, scale);
+    if let Ok(profile) = revolve::Bezier::new(profile_points) {
+        let r = Revolution::new(profile);
+        if let Some(Ok(s)) = f.call("NurbsSurface::from_revolution", || {
+            NurbsSurface::from_revolution(&r)
+        }) {
+            surface_point_check(f, &s, "NurbsSurface::from_revolution");
+        }
+    }
+}
+
+/// Curve–curve and curve–surface intersections: every point reported lies
+/// on both within the size (a loose check: the search's own tests hold it
+/// to closed forms).
+fn intersections(f: &mut Fuzz) {
+    let two = |f: &mut Fuzz| -> Option<Nurbs<2>> {
+        let n = 2 + f.below(5);
+        let degree = f.below(n.min(4));
+        let scale = f.scale();
+        let points = f.points::<2>(n, scale);
+        let weights = f.weights(n);
+        f.call("Nurbs::new", || {
+            Nurbs::new(degree, revolve_knots(n, degree), points, weights)
+        })?
+        .ok()
+    };
+    let (Some(a), Some(b)) = (two(f), two(f)) else {
+        return;
+    };
+    let tolerance = if f.chance(4) { f.number() } else { 1e-9 };
+    if let Some(Ok(found)) = f.call("intersect_curves", || intersect_curves(&a, &b, tolerance)) {
+        let size = [a.bounds(), b.bounds()]
+            .iter()
+            .fold(0.0_f64, |m, (lo, hi)| {
+                m.max(lo.coords.amax()).max(hi.coords.amax())
+            });
+        for x in found.iter().filter(|x| x.certified) {
+            let (pa, pb): (Point2<f64>, Point2<f64>) = (a.eval(x.t_a), b.eval(x.t_b));
+            f.check(
+                (pa - pb).norm() <= 1e-6 * size.max(f64::MIN_POSITIVE),
+                "intersect_curves",
+                || format!("{x:?}: {pa:?} vs {pb:?}"),
+            );
+        }
+    }
+    let Some(c) = nurbs_curve(f) else {
+        return;
+    };
+    let grid = control_grid(f, 3, 3);
+    if let Some(Ok(s)) = f.call("BezierSurface::new", || revolve::BezierSurface::new(grid)) {
+        if let Some(Ok(found)) = f.call("BezierSurface::intersect_curve", || {
+            s.intersect_curve(&c, 1e-9)
+        }) {
+            let b = s.bounds();
+            let size = b
+                .min
+                .coords
+                .amax()
+                .max(b.max.coords.amax())
+                .max(f64::MIN_POSITIVE);
+            for x in found.iter().filter(|x| x.certified) {
+                let (pc, ps): (Point3<f64>, Point3<f64>) = (c.eval(x.t), s.eval(x.uv.0, x.uv.1));
+                f.check(
+                    (pc - ps).norm() <= 1e-6 * size.max(pc.coords.amax()),
+                    "BezierSurface::intersect_curve",
+                    || format!("{x:?}: {pc:?} vs {ps:?}"),
+                );
+            }
+        }
+    }
+}
+
+/// A constructed surface evaluates to finite points with finite partials.
+fn surface_point_check<S: Surface>(f: &mut Fuzz, s: &S, name: &'static str) {
+    let [du, dv] = s.domain();
+    let (u, v) = (parameter(f, du), parameter(f, dv));
+    if let Some((p, (su, sv))) = f.call("Surface::eval", || (s.eval(u, v), s.partials(u, v))) {
+        let ok = finite_point(&p) && su.iter().chain(sv.iter()).all(|x| x.is_finite());
+        f.check(ok, name, || format!("at ({u}, {v}): {p:?} {su:?} {sv:?}"));
+    }
+}
