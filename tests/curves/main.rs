@@ -10,6 +10,7 @@ mod bezier;
 mod bspline;
 mod elevate;
 mod nurbs;
+mod operations;
 mod properties;
 mod queries;
 mod rational_bezier;

@@ -1,0 +1,336 @@
+//! Curve operations users of NURBS libraries expect: `Curve` for wrappers
+//! (`&C`, `Box<C>`, `Arc<C>`, `Box<dyn Curve<D>>`), `split`, `transformed`,
+//! `parameter_at_length` and `divide_by_length`, knot removal, 3D arcs and
+//! ellipses, and the Frenet frame.
+//!
+//! References are independent of the code under test: the unwrapped curve
+//! (bit for bit), the original curve at mapped parameters, the images of
+//! points under the transformation, closed forms (circle, helix-free exact
+//! cases, straight segments with known speed), and central differences.
+//! Tolerances are stated at each check as multiples of `ε` times the size
+//! of the values compared.
+
+use revolve::nalgebra::{Point2, Point3, Vector2, Vector3};
+use revolve::{BSpline, Bezier, Curve, Error, Intersect, Nurbs, RationalBezier, Ray, Revolution};
+use std::sync::Arc;
+
+const EPS: f64 = f64::EPSILON;
+
+/// A small deterministic generator (SplitMix64): the tests need no seed file.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in `[lo, hi)`.
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * u
+    }
+    fn point2(&mut self, r: f64) -> Point2<f64> {
+        Point2::new(self.uniform(-r, r), self.uniform(-r, r))
+    }
+    fn point3(&mut self, r: f64) -> Point3<f64> {
+        Point3::new(self.uniform(-r, r), self.uniform(-r, r), self.uniform(-r, r))
+    }
+}
+
+// ---------------------------------------------------------------------------
+// 1. Wrappers keep exactness
+// ---------------------------------------------------------------------------
+
+/// 1000 random rays from a box about the object toward random points near it.
+fn random_rays(seed: u64) -> Vec<Ray> {
+    let mut rng = Rng(seed);
+    (0..1000)
+        .map(|_| {
+            let origin = rng.point3(6.0);
+            let target = rng.point3(2.5);
+            let dir = target - origin;
+            Ray::new(origin, if dir.norm() > 0.0 { dir } else { Vector3::x() })
+        })
+        .collect()
+}
+
+/// The hits of two surfaces agree bit for bit on every ray; returns how many hit.
+fn same_hits(a: &impl Intersect, b: &impl Intersect, rays: &[Ray]) -> usize {
+    let mut hits = 0;
+    for ray in rays {
+        let (ha, hb) = (a.intersect(ray, 0.0, f64::INFINITY), b.intersect(ray, 0.0, f64::INFINITY));
+        match (ha, hb) {
+            (None, None) => {}
+            (Some(x), Some(y)) => {
+                hits += 1;
+                assert_eq!(x.t.to_bits(), y.t.to_bits(), "ray {ray:?}");
+                for k in 0..3 {
+                    assert_eq!(x.point[k].to_bits(), y.point[k].to_bits());
+                    assert_eq!(x.normal[k].to_bits(), y.normal[k].to_bits());
+                }
+                assert_eq!(x.uv.0.to_bits(), y.uv.0.to_bits());
+                assert_eq!(x.uv.1.to_bits(), y.uv.1.to_bits());
+            }
+            (x, y) => panic!("one hit, one miss on {ray:?}: {x:?} against {y:?}"),
+        }
+    }
+    hits
+}
+
+/// Every way of wrapping `profile` gives the exact intersector and the
+/// unwrapped revolution's hits.
+fn check_wrapped_profile<C: Curve<2> + Clone + Send + Sync + 'static>(profile: C, seed: u64) {
+    let plain = Revolution::new(profile.clone());
+    assert!(plain.has_exact_intersector());
+    let rays = random_rays(seed);
+
+    let by_ref = Revolution::new(&profile);
+    assert!(by_ref.has_exact_intersector());
+    let hits = same_hits(&plain, &by_ref, &rays);
+    assert!(hits > 100, "only {hits} of 1000 rays hit: the test would prove little");
+
+    let boxed = Revolution::new(Box::new(profile.clone()));
+    assert!(boxed.has_exact_intersector());
+    same_hits(&plain, &boxed, &rays);
+
+    let shared = Revolution::new(Arc::new(profile.clone()));
+    assert!(shared.has_exact_intersector());
+    same_hits(&plain, &shared, &rays);
+
+    let dynamic = Revolution::new(Box::new(profile.clone()) as Box<dyn Curve<2>>);
+    assert!(dynamic.has_exact_intersector());
+    same_hits(&plain, &dynamic, &rays);
+
+    let shared_dyn = Revolution::new(Arc::new(profile) as Arc<dyn Curve<2> + Send + Sync>);
+    assert!(shared_dyn.has_exact_intersector());
+    same_hits(&plain, &shared_dyn, &rays);
+}
+
+#[test]
+fn wrapped_bezier_profile_keeps_the_exact_intersector() {
+    let profile = Bezier::new(vec![
+        Point2::new(0.0, -1.5),
+        Point2::new(2.5, -1.0),
+        Point2::new(0.5, 0.5),
+        Point2::new(1.5, 1.5),
+    ])
+    .unwrap();
+    check_wrapped_profile(profile, 1);
+}
+
+#[test]
+fn wrapped_bspline_profile_keeps_the_exact_intersector() {
+    let profile = BSpline::clamped(
+        3,
+        vec![
+            Point2::new(0.0, -2.0),
+            Point2::new(1.5, -1.5),
+            Point2::new(0.5, -0.5),
+            Point2::new(2.0, 0.5),
+            Point2::new(1.0, 1.5),
+            Point2::new(0.0, 2.0),
+        ],
+    )
+    .unwrap();
+    check_wrapped_profile(profile, 2);
+}
+
+#[test]
+fn wrapped_nurbs_profile_keeps_the_exact_intersector() {
+    // A torus' meridian: a full circle about (1.5, 0), radius 0.75.
+    let profile = Nurbs::circle(Point2::new(1.5, 0.0), 0.75).unwrap();
+    check_wrapped_profile(profile, 3);
+}
+
+#[test]
+fn wrappers_forward_every_method() {
+    let curve = RationalBezier::new(
+        vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0), Point2::new(0.0, 1.0)],
+        vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+    )
+    .unwrap();
+    let wrapped: Vec<Box<dyn Curve<2>>> = vec![
+        Box::new(curve.clone()),
+        Box::new(&curve),
+        Box::new(Box::new(curve.clone())),
+        Box::new(Arc::new(curve.clone())),
+        Box::new(std::rc::Rc::new(curve.clone())),
+    ];
+    let q = Point2::new(2.0, 3.0);
+    for w in &wrapped {
+        assert_eq!(w.domain(), curve.domain());
+        for k in 0..=16 {
+            let t = k as f64 / 16.0;
+            assert_eq!(w.eval(t), curve.eval(t));
+            assert_eq!(w.derivative(t), curve.derivative(t));
+            assert_eq!(w.eval_with_derivative(t), curve.eval_with_derivative(t));
+            assert_eq!(w.tangent(t), curve.tangent(t));
+        }
+        assert_eq!(w.bezier_spans(), curve.bezier_spans());
+        assert_eq!(w.rational_bezier_spans(), curve.rational_bezier_spans());
+        assert!(w.rational_bezier_spans().is_some() && w.bezier_spans().is_none());
+        assert_eq!(w.nearest_point(&q), curve.nearest_point(&q));
+        assert_eq!(w.arc_length(1e-12), curve.arc_length(1e-12));
+        assert_eq!(w.discretize(7), curve.discretize(7));
+        assert_eq!(w.try_discretize(7), curve.try_discretize(7));
+    }
+}
+
+// ---------------------------------------------------------------------------
+// 2. split
+// ---------------------------------------------------------------------------
+
+/// `|a − b| ≤ tol·(1 + |a|)` per coordinate, with a message.
+fn assert_close<const D: usize>(
+    a: &revolve::nalgebra::Point<f64, D>,
+    b: &revolve::nalgebra::Point<f64, D>,
+    tol: f64,
+    what: &str,
+) {
+    let size = 1.0 + a.coords.amax();
+    assert!((a - b).amax() <= tol * size, "{what}: {a:?} against {b:?}");
+}
+
+fn random_points<const D: usize>(rng: &mut Rng, n: usize) -> Vec<revolve::nalgebra::Point<f64, D>> {
+    (0..n)
+        .map(|_| revolve::nalgebra::Point::from(revolve::nalgebra::SVector::<f64, D>::from_fn(|_, _| rng.uniform(-5.0, 5.0))))
+        .collect()
+}
+
+#[test]
+fn bezier_split_halves_are_the_curve_reparametrized() {
+    let mut rng = Rng(10);
+    for degree in 0..=9 {
+        let c = Bezier::new(random_points::<3>(&mut rng, degree + 1)).unwrap();
+        for &t in &[0.5, 0.1, 0.9, 1e-6, 0.3] {
+            let (l, r) = c.split(t).unwrap();
+            assert_eq!(l.degree(), degree);
+            assert_eq!(r.degree(), degree);
+            assert_eq!(l.points()[0], c.points()[0]);
+            assert_eq!(r.points()[degree], c.points()[degree]);
+            assert_eq!(l.points()[degree], r.points()[0]);
+            for k in 0..=50 {
+                let s = k as f64 / 50.0;
+                // Rounding of de Casteljau on both sides: a few ε·n·size.
+                let tol = 64.0 * EPS * (degree as f64 + 1.0);
+                assert_close(&l.eval(s), &c.eval(t * s), tol, "left half");
+                assert_close(&r.eval(s), &c.eval(t + (1.0 - t) * s), tol, "right half");
+            }
+        }
+    }
+}
+
+#[test]
+fn rational_bezier_split_halves_are_the_curve_reparametrized() {
+    let mut rng = Rng(11);
+    for degree in 1..=6 {
+        let weights = (0..=degree).map(|_| rng.uniform(0.2, 3.0)).collect();
+        let c = RationalBezier::new(random_points::<2>(&mut rng, degree + 1), weights).unwrap();
+        for &t in &[0.5, 0.2, 0.77] {
+            let (l, r) = c.split(t).unwrap();
+            assert_eq!((l.degree(), r.degree()), (degree, degree));
+            assert_eq!(l.points()[0], c.points()[0]);
+            assert_eq!(r.points()[degree], c.points()[degree]);
+            for k in 0..=40 {
+                let s = k as f64 / 40.0;
+                let tol = 1e3 * EPS;
+                assert_close(&l.eval(s), &c.eval(t * s), tol, "left half");
+                assert_close(&r.eval(s), &c.eval(t + (1.0 - t) * s), tol, "right half");
+            }
+        }
+    }
+}
+
+/// Samples of a spline's domain, avoiding nothing: knots included.
+fn spline_samples((a, b): (f64, f64), count: usize) -> impl Iterator<Item = f64> {
+    (0..=count).map(move |k| a + (b - a) * k as f64 / count as f64)
+}
+
+#[test]
+fn bspline_split_halves_keep_the_parameters() {
+    let mut rng = Rng(12);
+    for degree in 0..=5 {
+        for n in degree + 1..degree + 6 {
+            let c = BSpline::uniform(degree, random_points::<2>(&mut rng, n)).unwrap();
+            let (a, b) = c.domain();
+            // A knot, a non-knot, near the ends.
+            let mut ts = vec![a + 0.37 * (b - a), a + 0.01 * (b - a), a + 0.99 * (b - a)];
+            ts.extend(c.knots().iter().copied().filter(|&k| a < k && k < b));
+            for t in ts {
+                let (l, r) = c.split(t).unwrap();
+                assert_eq!(l.domain(), (a, t));
+                assert_eq!(r.domain(), (t, b));
+                assert_eq!((l.degree(), r.degree()), (degree, degree));
+                assert_close(&l.eval(a), &c.eval(a), 1e3 * EPS, "start point");
+                assert_close(&r.eval(b), &c.eval(b), 1e3 * EPS, "end point");
+                for s in spline_samples((a, b), 60).chain([t]) {
+                    // At t the curve takes its limit from the right (a
+                    // jump for degree 0), as the right half does.
+                    let half = if s < t { &l } else { &r };
+                    assert_close(&half.eval(s), &c.eval(s), 1e3 * EPS, "half against curve");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bspline_split_at_a_jump_takes_the_two_limits() {
+    // Degree 1 with a double interior knot: a jump at 0.5.
+    let c = BSpline::new(
+        1,
+        vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
+        vec![Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(1.0, 5.0), Point2::new(2.0, 5.0)],
+    )
+    .unwrap();
+    let (l, r) = c.split(0.5).unwrap();
+    assert_eq!(l.eval(0.5), Point2::new(1.0, 0.0));
+    assert_eq!(r.eval(0.5), Point2::new(1.0, 5.0));
+    assert_eq!(l.points().len() + r.points().len(), 4);
+}
+
+#[test]
+fn nurbs_split_halves_keep_the_parameters() {
+    let circle = Nurbs::circle(Point2::new(1.0, -2.0), 3.0).unwrap();
+    for &t in &[0.1, 0.25, 0.5, 0.6, 0.999] {
+        let (l, r) = circle.split(t).unwrap();
+        assert_eq!(l.domain(), (0.0, t));
+        assert_eq!(r.domain(), (t, 1.0));
+        assert_eq!((l.degree(), r.degree()), (2, 2));
+        assert_eq!(l.eval(0.0), circle.eval(0.0));
+        assert_eq!(r.eval(1.0), circle.eval(1.0));
+        for s in spline_samples((0.0, 1.0), 80) {
+            let half = if s <= t { &l } else { &r };
+            assert_close(&half.eval(s), &circle.eval(s), 64.0 * EPS, "half against circle");
+            assert!(((half.eval(s) - Point2::new(1.0, -2.0)).norm() - 3.0).abs() < 1e-14);
+        }
+    }
+}
+
+#[test]
+fn split_refuses_the_ends_nan_and_outside() {
+    let bez = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)]).unwrap();
+    let rat = RationalBezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)], vec![1.0, 2.0]).unwrap();
+    let spl = BSpline::clamped(2, random_points::<2>(&mut Rng(13), 5)).unwrap();
+    let nrb = Nurbs::circle(Point2::origin(), 1.0).unwrap();
+    let at_end = |r: Result<(), Error>| assert!(matches!(r, Err(Error::SplitAtDomainEnd { .. })), "{r:?}");
+    let outside = |r: Result<(), Error>| assert!(matches!(r, Err(Error::ParameterOutOfDomain { .. })), "{r:?}");
+    for t in [0.0, 1.0] {
+        at_end(bez.split(t).map(|_| ()));
+        at_end(rat.split(t).map(|_| ()));
+        at_end(spl.split(t).map(|_| ()));
+        at_end(nrb.split(t).map(|_| ()));
+    }
+    // Within rounding of an end: the knot itself.
+    at_end(spl.split(1e-17).map(|_| ()));
+    at_end(nrb.split(1.0 - 1e-17).map(|_| ()));
+    for t in [f64::NAN, -0.5, 1.5, f64::INFINITY] {
+        outside(bez.split(t).map(|_| ()));
+        outside(rat.split(t).map(|_| ()));
+        outside(spl.split(t).map(|_| ()));
+        outside(nrb.split(t).map(|_| ()));
+    }
+}
