@@ -34,6 +34,7 @@ mod pieces;
 mod query;
 mod rational_bezier;
 mod split;
+mod transform;
 mod unit_scale;
 mod wrappers;
 pub use arc_length::ArcLength;

@@ -334,3 +334,147 @@ fn split_refuses_the_ends_nan_and_outside() {
         outside(nrb.split(t).map(|_| ()));
     }
 }
+
+// ---------------------------------------------------------------------------
+// 3. transformed and transformed_projective
+// ---------------------------------------------------------------------------
+
+use revolve::nalgebra::{Affine2, Affine3, Matrix3, Matrix4, Projective2, Projective3};
+
+fn random_affine2(rng: &mut Rng) -> Affine2<f64> {
+    let mut m = Matrix3::from_fn(|_, _| rng.uniform(-2.0, 2.0));
+    m.set_row(2, &revolve::nalgebra::RowVector3::new(0.0, 0.0, 1.0));
+    Affine2::from_matrix_unchecked(m)
+}
+
+fn random_affine3(rng: &mut Rng) -> Affine3<f64> {
+    let mut m = Matrix4::from_fn(|_, _| rng.uniform(-2.0, 2.0));
+    m.set_row(3, &revolve::nalgebra::RowVector4::new(0.0, 0.0, 0.0, 1.0));
+    Affine3::from_matrix_unchecked(m)
+}
+
+/// `T(C(s))` against `C′(s)` at 41 parameters across the domain; the
+/// tolerance covers the rounding of mapping the control points and of
+/// evaluating both curves: `1e3·ε` times the size of the values.
+fn assert_commutes<const D: usize>(
+    original: &impl Curve<D>,
+    image: &impl Curve<D>,
+    map: impl Fn(&revolve::nalgebra::Point<f64, D>) -> revolve::nalgebra::Point<f64, D>,
+    scale: f64,
+) {
+    assert_eq!(original.domain(), image.domain());
+    for s in spline_samples(original.domain(), 40) {
+        let want = map(&original.eval(s));
+        let got = image.eval(s);
+        assert!((want - got).amax() <= 1e3 * EPS * scale, "at {s}: {got:?} against {want:?}");
+    }
+}
+
+#[test]
+fn affine_transforms_commute_with_evaluation() {
+    let mut rng = Rng(20);
+    for _ in 0..20 {
+        let t2 = random_affine2(&mut rng);
+        let t3 = random_affine3(&mut rng);
+        let bez = Bezier::new(random_points::<2>(&mut rng, 5)).unwrap();
+        assert_commutes(&bez, &bez.transformed(&t2), |p| t2 * p, 50.0);
+        let bez3 = Bezier::new(random_points::<3>(&mut rng, 4)).unwrap();
+        assert_commutes(&bez3, &bez3.transformed(&t3), |p| t3 * p, 50.0);
+        let weights: Vec<f64> = (0..4).map(|_| rng.uniform(0.3, 3.0)).collect();
+        let rat = RationalBezier::new(random_points::<3>(&mut rng, 4), weights.clone()).unwrap();
+        let rat_image = rat.transformed(&t3);
+        assert_eq!(rat_image.weights(), rat.weights());
+        assert_commutes(&rat, &rat_image, |p| t3 * p, 50.0);
+        let spl = BSpline::uniform(3, random_points::<3>(&mut rng, 7)).unwrap();
+        let spl_image = spl.transformed(&t3);
+        assert_eq!(spl_image.knots(), spl.knots());
+        assert_commutes(&spl, &spl_image, |p| t3 * p, 50.0);
+        let nrb = Nurbs::new(
+            3,
+            spl.knots().to_vec(),
+            spl.points().to_vec(),
+            (0..7).map(|_| rng.uniform(0.3, 3.0)).collect(),
+        )
+        .unwrap();
+        let nrb_image = nrb.transformed(&t3);
+        assert_eq!(nrb_image.weights(), nrb.weights());
+        assert_commutes(&nrb, &nrb_image, |p| t3 * p, 50.0);
+        let circle = Nurbs::circle(rng.point2(3.0), 2.0).unwrap();
+        assert_commutes(&circle, &circle.transformed(&t2), |p| t2 * p, 50.0);
+        // The fallible form gives the same curve.
+        assert_eq!(circle.try_transformed(&t2).unwrap(), circle.transformed(&t2));
+    }
+}
+
+#[test]
+fn projective_transforms_commute_with_evaluation() {
+    let mut rng = Rng(21);
+    let mut checked = 0;
+    for _ in 0..200 {
+        // A perspective with a small projective row keeps the curve away
+        // from the plane at infinity (most of the time: others are refused).
+        let mut m = Matrix4::from_fn(|_, _| rng.uniform(-2.0, 2.0));
+        m[(3, 3)] = rng.uniform(2.0, 4.0) * if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+        for j in 0..3 {
+            m[(3, j)] = rng.uniform(-0.2, 0.2);
+        }
+        let map = Projective3::from_matrix_unchecked(m);
+        let weights = (0..6).map(|_| rng.uniform(0.3, 3.0)).collect();
+        let nrb = Nurbs::new(2, vec![0.0, 0.0, 0.0, 0.3, 0.6, 0.8, 1.0, 1.0, 1.0], random_points::<3>(&mut rng, 6), weights).unwrap();
+        // The independent reference: the point mapped in homogeneous form.
+        let reference = |p: &Point3<f64>| {
+            let h = m * p.to_homogeneous();
+            Point3::new(h.x / h.w, h.y / h.w, h.z / h.w)
+        };
+        match nrb.transformed_projective(&map) {
+            Ok(image) => {
+                checked += 1;
+                assert!(image.weights().iter().all(|&w| w > 0.0));
+                assert_commutes(&nrb, &image, reference, 50.0);
+            }
+            Err(e) => assert!(matches!(e, Error::ProjectiveWeightNotPositive { .. }), "{e:?}"),
+        }
+    }
+    assert!(checked > 150, "only {checked} projective images checked");
+    // 2D: a circle under a perspective is a conic, the images of its points.
+    let circle = Nurbs::circle(Point2::new(0.5, 0.0), 1.0).unwrap();
+    let m = Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 1.0, 0.3, -0.1, 2.0);
+    let image = circle.transformed_projective(&Projective2::from_matrix_unchecked(m)).unwrap();
+    assert_commutes(&circle, &image, |p| Projective2::from_matrix_unchecked(m) * p, 10.0);
+    // An affine matrix as a projective one gives `transformed`'s curve.
+    let t = random_affine2(&mut rng);
+    let projective = Projective2::from_matrix_unchecked(*t.matrix());
+    let (a, b) = (circle.transformed(&t), circle.transformed_projective(&projective).unwrap());
+    for s in spline_samples((0.0, 1.0), 20) {
+        assert_close(&a.eval(s), &b.eval(s), 1e3 * EPS, "affine as projective");
+    }
+}
+
+#[test]
+fn transform_errors_are_named() {
+    let bez = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1e99, 2.0)]).unwrap();
+    let nan = Affine2::from_matrix_unchecked(Matrix3::new(f64::NAN, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    assert_eq!(bez.try_transformed(&nan), Err(Error::InvalidTransform));
+    let grow = Affine2::from_matrix_unchecked(Matrix3::new(100.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    assert!(matches!(bez.try_transformed(&grow), Err(Error::CoordinateTooLarge { index: 1, .. })));
+    let overflow = Affine2::from_matrix_unchecked(Matrix3::new(1e300, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    assert!(matches!(bez.try_transformed(&overflow), Err(Error::NonFinitePoint { index: 1 })));
+    // The infallible form never gives NaN: saturated points, or the curve itself.
+    for t in [nan, grow, overflow] {
+        let image = bez.transformed(&t);
+        for s in spline_samples((0.0, 1.0), 10) {
+            assert!(image.eval(s).iter().all(|x| x.is_finite()));
+        }
+        let spl = BSpline::clamped(1, bez.points().to_vec()).unwrap().transformed(&t);
+        assert!(spl.points().iter().all(|p| p.iter().all(|x| x.is_finite())));
+    }
+    let circle = Nurbs::circle(Point2::origin(), 1.0).unwrap();
+    // The line x = 0.5 (the plane at infinity's preimage) cuts the circle.
+    let cut = Projective2::from_matrix_unchecked(Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -0.5));
+    assert!(matches!(circle.transformed_projective(&cut), Err(Error::ProjectiveWeightNotPositive { .. })));
+    let bad = Projective2::from_matrix_unchecked(Matrix3::new(1.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0, 0.0, 0.0, 1.0));
+    assert_eq!(circle.transformed_projective(&bad), Err(Error::InvalidTransform));
+    let rat = RationalBezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)], vec![1.0, 2.0]).unwrap();
+    assert_eq!(rat.try_transformed(&nan), Err(Error::InvalidTransform));
+    assert_eq!(circle.try_transformed(&nan), Err(Error::InvalidTransform));
+}
