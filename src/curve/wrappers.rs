@@ -74,6 +74,14 @@ macro_rules! forward_curve {
                 (**self).arc_length(tolerance)
             }
             #[inline]
+            fn parameter_at_length(&self, s: f64, tolerance: f64) -> Result<f64, Error> {
+                (**self).parameter_at_length(s, tolerance)
+            }
+            #[inline]
+            fn divide_by_length(&self, pieces: usize, tolerance: f64) -> Result<Vec<f64>, Error> {
+                (**self).divide_by_length(pieces, tolerance)
+            }
+            #[inline]
             fn discretize(&self, segments: usize) -> Vec<CurveSample<D>> {
                 (**self).discretize(segments)
             }

@@ -478,3 +478,130 @@ fn transform_errors_are_named() {
     assert_eq!(rat.try_transformed(&nan), Err(Error::InvalidTransform));
     assert_eq!(circle.try_transformed(&nan), Err(Error::InvalidTransform));
 }
+
+// ---------------------------------------------------------------------------
+// 4. parameter_at_length and divide_by_length
+// ---------------------------------------------------------------------------
+
+#[test]
+fn parameter_at_length_on_a_circle_is_the_angle_times_the_radius() {
+    let r = 2.5;
+    let circle = Nurbs::circle(Point2::new(1.0, 1.0), r).unwrap();
+    let tolerance = 1e-10;
+    for k in 0..=20 {
+        let s = k as f64 / 20.0 * std::f64::consts::TAU * r * 0.999;
+        let t = circle.parameter_at_length(s, tolerance).unwrap();
+        let p = circle.eval(t) - Point2::new(1.0, 1.0);
+        let mut angle = p.y.atan2(p.x);
+        if angle < -1e-9 {
+            angle += std::f64::consts::TAU;
+        }
+        // Closed form: angle = s / r; the arc length error is at most the
+        // tolerance, and rounding of the point adds a few ε.
+        assert!((angle * r - s).abs() <= tolerance + 1e-13, "s = {s}: angle·r = {}", angle * r);
+    }
+    assert_eq!(circle.parameter_at_length(0.0, tolerance).unwrap(), 0.0);
+    // The whole length: the end, or a parameter within the tolerance of it.
+    let t = circle.parameter_at_length(std::f64::consts::TAU * r, 1e-9).unwrap();
+    assert!((1.0 - t) * std::f64::consts::TAU * r <= 1e-9 + 1e-13, "{t}");
+}
+
+#[test]
+fn parameter_at_length_on_a_segment_with_non_uniform_speed() {
+    // x(t) = 4·(3t² − 2t³) (a cubic Bézier 0, 0, 4, 4 on a line): the length
+    // from 0 is x(t) itself, monotone, speed zero at both ends.
+    let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.0, 0.0), Point2::new(4.0, 0.0), Point2::new(4.0, 0.0)]).unwrap();
+    // The same in 3D, along a slanted line: length = 5·x/4 … scaled by 5/4.
+    let d = Bezier::new(vec![Point3::origin(), Point3::origin(), Point3::new(4.0, 3.0, 0.0), Point3::new(4.0, 3.0, 0.0)]).unwrap();
+    let tolerance = 1e-11;
+    for k in 0..=16 {
+        let s = 4.0 * k as f64 / 16.0;
+        let t = c.parameter_at_length(s, tolerance).unwrap();
+        let length = 4.0 * (3.0 * t * t - 2.0 * t * t * t);
+        assert!((length - s).abs() <= tolerance + 8.0 * EPS * 4.0, "s = {s}, t = {t}");
+        let t3 = d.parameter_at_length(1.25 * s, tolerance).unwrap();
+        let length3 = 5.0 * (3.0 * t3 * t3 - 2.0 * t3 * t3 * t3);
+        assert!((length3 - 1.25 * s).abs() <= tolerance + 8.0 * EPS * 5.0);
+    }
+    let ts = c.divide_by_length(8, tolerance).unwrap();
+    assert_eq!(ts.len(), 9);
+    assert_eq!((ts[0], ts[8]), (0.0, 1.0));
+    for (i, &t) in ts.iter().enumerate() {
+        let length = 4.0 * (3.0 * t * t - 2.0 * t * t * t);
+        assert!((length - 0.5 * i as f64).abs() <= tolerance + 32.0 * EPS);
+    }
+    assert!(ts.windows(2).all(|w| w[0] < w[1]));
+}
+
+#[test]
+fn length_to_the_parameter_found_is_within_tolerance() {
+    let mut rng = Rng(30);
+    for _ in 0..12 {
+        let degree = 1 + (rng.next_u64() % 4) as usize;
+        let n = degree + 1 + (rng.next_u64() % 5) as usize;
+        let weights: Vec<f64> = (0..n).map(|_| rng.uniform(0.5, 2.0)).collect();
+        let base = BSpline::clamped(degree, random_points::<3>(&mut rng, n)).unwrap();
+        let curve = Nurbs::new(degree, base.knots().to_vec(), base.points().to_vec(), weights).unwrap();
+        let total = curve.arc_length(1e-11).unwrap();
+        let tolerance = 1e-8;
+        for k in 0..=6 {
+            let s = total.length * k as f64 / 6.0;
+            let t = curve.parameter_at_length(s, tolerance).unwrap();
+            // Independent check: the prefix [a, t] measured on its own, as
+            // the exact split's left half.
+            let measured = match curve.split(t) {
+                Ok((left, _)) => left.arc_length(1e-11).unwrap().length,
+                // At (or within rounding of) an end.
+                Err(Error::SplitAtDomainEnd { .. }) if t < 0.5 => 0.0,
+                Err(Error::SplitAtDomainEnd { .. }) => total.length,
+                Err(e) => panic!("{e:?}"),
+            };
+            assert!((measured - s).abs() <= tolerance + 2e-11, "s = {s}: L(t) = {measured}");
+        }
+        let ts = curve.divide_by_length(5, tolerance).unwrap();
+        assert!(ts.windows(2).all(|w| w[0] <= w[1]));
+        assert_eq!((ts[0], ts[5]), (0.0, 1.0));
+    }
+}
+
+#[test]
+fn length_parameter_errors_are_named() {
+    let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(3.0, 4.0)]).unwrap();
+    for s in [-1.0, 5.5, f64::NAN, f64::INFINITY] {
+        assert!(matches!(c.parameter_at_length(s, 1e-9), Err(Error::LengthOutOfRange { .. })), "{s}");
+    }
+    // Within the tolerance of the end: the end.
+    assert_eq!(c.parameter_at_length(5.0 + 1e-10, 1e-9), Ok(1.0));
+    for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(c.parameter_at_length(1.0, tol), Err(Error::InvalidTolerance { .. })));
+        assert!(matches!(c.divide_by_length(2, tol), Err(Error::InvalidTolerance { .. })));
+    }
+    assert_eq!(c.divide_by_length(0, 1e-9), Err(Error::ZeroPieces));
+    assert!(matches!(c.divide_by_length(usize::MAX, 1e-9), Err(Error::TooManySegments { .. })));
+    assert!(matches!(c.parameter_at_length(1.0, 1e-300), Err(Error::ToleranceTooSmall { .. })));
+}
+
+/// A user's curve without spans: a unit-speed line, `C(t) = (t, 0)` on [0, 2].
+struct Line;
+
+impl Curve<2> for Line {
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 2.0)
+    }
+    fn eval(&self, t: f64) -> Point2<f64> {
+        Point2::new(t.clamp(0.0, 2.0), 0.0)
+    }
+    fn derivative(&self, _: f64) -> Vector2<f64> {
+        Vector2::new(1.0, 0.0)
+    }
+}
+
+#[test]
+fn length_parameter_on_a_curve_without_spans() {
+    let t = Line.parameter_at_length(0.7, 1e-10).unwrap();
+    assert!((t - 0.7).abs() <= 1e-10);
+    let ts = Line.divide_by_length(4, 1e-10).unwrap();
+    for (i, t) in ts.iter().enumerate() {
+        assert!((t - 0.5 * i as f64).abs() <= 1e-10);
+    }
+}
