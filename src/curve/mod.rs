@@ -28,6 +28,7 @@ mod elevate;
 mod flatten;
 mod gauss_remainder;
 mod homogeneous;
+mod knot_removal;
 mod knots;
 mod length_parameter;
 mod nurbs;

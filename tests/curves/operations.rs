@@ -605,3 +605,100 @@ fn length_parameter_on_a_curve_without_spans() {
         assert!((t - 0.5 * i as f64).abs() <= 1e-10);
     }
 }
+
+// ---------------------------------------------------------------------------
+// 5. Knot removal
+// ---------------------------------------------------------------------------
+
+#[test]
+fn inserting_then_removing_gives_back_the_control_points() {
+    let mut rng = Rng(40);
+    for degree in 1..=5 {
+        let n = degree + 4;
+        let c = BSpline::clamped(degree, random_points::<3>(&mut rng, n)).unwrap();
+        for &(u, times) in &[(0.37, 1), (0.61, degree.min(2)), (0.13, degree)] {
+            let refined = c.insert_knot(u, times).unwrap();
+            let (back, removed) = refined.remove_knot(u, times, 1e-9).unwrap();
+            assert_eq!(removed, times, "degree {degree}, u = {u}");
+            assert_eq!(back.knots(), c.knots());
+            for (a, b) in back.points().iter().zip(c.points()) {
+                assert!((a - b).amax() <= 1e-12, "{a:?} against {b:?}");
+            }
+            // Asking for more removals than the inserted ones stops at them
+            // (the original's knots are essential for random points).
+            let (_, more) = refined.remove_knot(u, times + 3, 1e-9).unwrap();
+            assert_eq!(more, times);
+        }
+        // NURBS: the same with random weights.
+        let weights: Vec<f64> = (0..n).map(|_| rng.uniform(0.5, 2.0)).collect();
+        let r = Nurbs::new(degree, c.knots().to_vec(), c.points().to_vec(), weights.clone()).unwrap();
+        let refined = r.insert_knot(0.42, degree).unwrap();
+        let (back, removed) = refined.remove_knot(0.42, degree, 1e-9).unwrap();
+        assert_eq!(removed, degree);
+        assert_eq!(back.knots(), r.knots());
+        for ((a, b), (v, w)) in back.points().iter().zip(r.points()).zip(back.weights().iter().zip(&weights)) {
+            assert!((a - b).amax() <= 1e-11, "{a:?} against {b:?}");
+            assert!((v - w).abs() <= 1e-12 * w);
+        }
+    }
+}
+
+#[test]
+fn essential_knots_are_not_removed() {
+    // A degree-1 polyline with a real corner at its interior knot.
+    let corner = BSpline::clamped(1, vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0), Point2::new(2.0, 0.0)]).unwrap();
+    let (same, removed) = corner.remove_knot(0.5, 1, 0.1).unwrap();
+    assert_eq!(removed, 0);
+    assert_eq!(same, corner);
+    // With a tolerance beyond the corner's distance to the chord (1), it goes:
+    // the bound is |P₁ − (P₀ + P₂)/2| = 1.
+    let (line, removed) = corner.remove_knot(0.5, 1, 1.0 + 1e-12).unwrap();
+    assert_eq!(removed, 1);
+    assert_eq!(line.points().len(), 2);
+    for s in spline_samples((0.0, 1.0), 20) {
+        // The promise: within the tolerance everywhere.
+        assert!((line.eval(s) - corner.eval(s)).norm() <= 1.0 + 1e-12);
+    }
+    // The circle's quarter knots are essential for NURBS too.
+    let circle = Nurbs::circle(Point2::origin(), 1.0).unwrap();
+    assert_eq!(circle.remove_knot(0.5, 2, 1e-6).unwrap().1, 0);
+    // A random cubic's interior knots are essential.
+    let c = BSpline::clamped(3, random_points::<2>(&mut Rng(41), 7)).unwrap();
+    for &u in &c.knots()[4..7] {
+        assert_eq!(c.remove_knot(u, 1, 1e-9).unwrap().1, 0);
+    }
+}
+
+#[test]
+fn removal_within_tolerance_stays_within_it() {
+    // Removing a knot from a slightly perturbed refined curve: accepted
+    // only when the perturbation's effect is within the tolerance, and then
+    // the curves are within the tolerance everywhere (checked densely).
+    let c = BSpline::clamped(3, random_points::<2>(&mut Rng(42), 6)).unwrap();
+    let refined = c.insert_knot(0.4, 1).unwrap();
+    let mut points = refined.points().to_vec();
+    points[3].x += 1e-4;
+    let bumped = BSpline::new(3, refined.knots().to_vec(), points).unwrap();
+    assert_eq!(bumped.remove_knot(0.4, 1, 1e-6).unwrap().1, 0);
+    let (smooth, removed) = bumped.remove_knot(0.4, 1, 1e-3).unwrap();
+    assert_eq!(removed, 1);
+    for s in spline_samples((0.0, 1.0), 400) {
+        assert!((smooth.eval(s) - bumped.eval(s)).norm() <= 1e-3);
+    }
+}
+
+#[test]
+fn knot_removal_errors_are_named() {
+    let c = BSpline::clamped(2, random_points::<2>(&mut Rng(43), 5)).unwrap();
+    for t in [0.0, 1.0, 0.2, f64::NAN, 2.0] {
+        assert!(matches!(c.remove_knot(t, 1, 1e-9), Err(Error::NotAnInteriorKnot { .. })));
+    }
+    for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(c.remove_knot(1.0 / 3.0, 1, tol), Err(Error::InvalidTolerance { .. })));
+    }
+    let circle = Nurbs::circle(Point2::origin(), 1.0).unwrap();
+    assert!(matches!(circle.remove_knot(0.3, 1, 1e-9), Err(Error::NotAnInteriorKnot { .. })));
+    assert!(matches!(circle.remove_knot(0.25, 1, 0.0), Err(Error::InvalidTolerance { .. })));
+    // Zero removals asked: a copy.
+    assert_eq!(c.remove_knot(1.0 / 3.0, 0, 1e-9).unwrap(), (c.clone(), 0));
+}
