@@ -24,6 +24,7 @@ mod arc_length;
 mod bezier;
 mod bspline;
 mod conic;
+mod conic_3d;
 mod elevate;
 mod flatten;
 mod gauss_remainder;

@@ -702,3 +702,86 @@ fn knot_removal_errors_are_named() {
     // Zero removals asked: a copy.
     assert_eq!(c.remove_knot(1.0 / 3.0, 0, 1e-9).unwrap(), (c.clone(), 0));
 }
+
+// ---------------------------------------------------------------------------
+// 6. 3D arcs and elliptic arcs
+// ---------------------------------------------------------------------------
+
+#[test]
+fn arcs_in_space_lie_on_their_circle_and_plane() {
+    let mut rng = Rng(50);
+    for i in 0..100 {
+        // Half about the origin (checked to 1e-15·r), half about a far
+        // centre (whose coordinates' rounding, 16ε·(|c| + r), is added).
+        let center = if i % 2 == 0 { Point3::origin() } else { rng.point3(10.0) };
+        let normal = rng.point3(1.0).coords;
+        let start_dir = rng.point3(1.0).coords;
+        let radius = rng.uniform(0.1, 5.0);
+        let start = rng.uniform(-7.0, 7.0);
+        let sweep = rng.uniform(0.1, std::f64::consts::TAU);
+        let arc = Nurbs::arc_3d(center, normal, start_dir, radius, start, start + sweep).unwrap();
+        let n = normal.normalize();
+        let e1 = (start_dir - n * start_dir.dot(&n)).normalize();
+        let e2 = n.cross(&e1);
+        for s in spline_samples((0.0, 1.0), 64) {
+            let p = arc.eval(s) - center;
+            // On the circle to 1e-15·r (plus the centre's rounding, ε·|c|)
+            // and in the plane to the same.
+            let slack = 1e-15 * radius + 16.0 * EPS * (center.coords.amax() + radius) * f64::from(i % 2);
+            assert!((p.norm() - radius).abs() <= slack, "radius {} against {radius}", p.norm());
+            // The plane: the control points' and the reference normal's
+            // rounding, 16ε·r, beside the slack.
+            assert!(p.dot(&n).abs() <= slack + 16.0 * EPS * radius, "off the plane by {}", p.dot(&n));
+        }
+        // The ends at the angles given, counter-clockwise about the normal.
+        let at = |theta: f64| center + (e1 * theta.cos() + e2 * theta.sin()) * radius;
+        assert!((arc.eval(0.0) - at(start)).norm() <= 1e-14 * (radius + center.coords.amax()));
+        assert!((arc.eval(1.0) - at(start + sweep)).norm() <= 1e-14 * (radius + center.coords.amax()));
+        // Counter-clockwise: (C − c) × C′ points along the normal.
+        let d = arc.derivative(0.5);
+        assert!((arc.eval(0.5) - center).cross(&d).dot(&n) > 0.0);
+    }
+}
+
+#[test]
+fn elliptic_arcs_satisfy_the_ellipse_equation() {
+    let mut rng = Rng(51);
+    for _ in 0..50 {
+        let center = rng.point2(10.0);
+        let (a, b) = (rng.uniform(0.1, 5.0), rng.uniform(0.1, 5.0));
+        let start = rng.uniform(-7.0, 7.0);
+        let sweep = rng.uniform(0.1, std::f64::consts::TAU);
+        let e = Nurbs::ellipse_arc(center, (a, b), start, start + sweep).unwrap();
+        for s in spline_samples((0.0, 1.0), 64) {
+            let p = e.eval(s) - center;
+            let slack = 1e-15 + 8.0 * EPS * center.coords.amax() / a.min(b);
+            assert!(((p.x / a).powi(2) + (p.y / b).powi(2) - 1.0).abs() <= slack);
+        }
+        let at = |t: f64| center + Vector2::new(a * t.cos(), b * t.sin());
+        assert!((e.eval(0.0) - at(start)).norm() <= 1e-14 * (a + b + center.coords.amax()));
+        assert!((e.eval(1.0) - at(start + sweep)).norm() <= 1e-14 * (a + b + center.coords.amax()));
+    }
+}
+
+#[test]
+fn conic_errors_are_named() {
+    let c = Point3::origin();
+    let (z, x) = (Vector3::z(), Vector3::x());
+    assert!(matches!(Nurbs::arc_3d(Point3::new(f64::NAN, 0.0, 0.0), z, x, 1.0, 0.0, 1.0), Err(Error::InvalidCenter3 { .. })));
+    assert!(matches!(Nurbs::arc_3d(Point3::new(1e101, 0.0, 0.0), z, x, 1.0, 0.0, 1.0), Err(Error::InvalidCenter3 { .. })));
+    for (n, d) in [(Vector3::zeros(), x), (z, Vector3::zeros()), (z, z * -3.0), (Vector3::new(f64::NAN, 0.0, 1.0), x), (z, Vector3::new(0.0, f64::INFINITY, 0.0))] {
+        assert!(matches!(Nurbs::arc_3d(c, n, d, 1.0, 0.0, 1.0), Err(Error::InvalidArcFrame { .. })), "{n:?} {d:?}");
+    }
+    for r in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e101] {
+        assert!(matches!(Nurbs::arc_3d(c, z, x, r, 0.0, 1.0), Err(Error::InvalidRadius { .. })));
+        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (r, 1.0), 0.0, 1.0), Err(Error::InvalidRadius { .. })));
+        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (1.0, r), 0.0, 1.0), Err(Error::InvalidRadius { .. })));
+    }
+    for (s, e) in [(1.0, 1.0), (1.0, 0.0), (0.0, 7.0), (f64::NAN, 1.0)] {
+        assert!(matches!(Nurbs::arc_3d(c, z, x, 1.0, s, e), Err(Error::InvalidSweep { .. })));
+        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (1.0, 2.0), s, e), Err(Error::InvalidSweep { .. })));
+    }
+    assert!(matches!(Nurbs::ellipse_arc(Point2::new(0.0, f64::NAN), (1.0, 2.0), 0.0, 1.0), Err(Error::InvalidCenter { .. })));
+    // A control point beyond the limit: a centre at the limit plus a radius.
+    assert!(matches!(Nurbs::arc_3d(Point3::new(1e100, 0.0, 0.0), z, x, 1e100, 0.0, 1.0), Err(Error::CoordinateTooLarge { .. })));
+}
