@@ -785,3 +785,93 @@ fn conic_errors_are_named() {
     // A control point beyond the limit: a centre at the limit plus a radius.
     assert!(matches!(Nurbs::arc_3d(Point3::new(1e100, 0.0, 0.0), z, x, 1e100, 0.0, 1.0), Err(Error::CoordinateTooLarge { .. })));
 }
+
+// ---------------------------------------------------------------------------
+// 7. Frenet frame
+// ---------------------------------------------------------------------------
+
+#[test]
+fn frenet_frame_of_a_circle_in_space() {
+    let mut rng = Rng(60);
+    for _ in 0..20 {
+        let center = rng.point3(5.0);
+        let normal = rng.point3(1.0).coords;
+        let radius = rng.uniform(0.2, 4.0);
+        let arc = Nurbs::arc_3d(center, normal, rng.point3(1.0).coords, radius, 0.0, 5.0).unwrap();
+        let n = normal.normalize();
+        for s in spline_samples((0.0, 1.0), 32) {
+            let f = arc.frenet_frame(s).unwrap();
+            // Closed form: κ = 1/r, τ = 0, B = n, N toward the centre.
+            assert!((f.curvature * radius - 1.0).abs() <= 1e-12, "κ·r = {}", f.curvature * radius);
+            assert!(f.torsion.abs() * radius <= 1e-10, "τ = {}", f.torsion);
+            assert!((f.binormal.into_inner() - n).norm() <= 1e-12);
+            let inward = (center - arc.eval(s)).normalize();
+            assert!((f.normal.into_inner() - inward).norm() <= 1e-12);
+            assert!((f.tangent.into_inner() - arc.derivative(s).normalize()).norm() <= 1e-14);
+            // Orthonormal, right-handed.
+            assert!(f.tangent.cross(&f.normal).dot(&f.binormal) > 1.0 - 1e-14);
+        }
+    }
+}
+
+/// Curvature and torsion from central differences of the points: step
+/// `h`, errors `O(h²)` in the derivatives and `ε·|C|/h³` from rounding:
+/// about 1e-4 relative (τ, large near an inflection, loses more: 1e-3).
+fn fd_curvature_torsion(c: &impl Curve<3>, t: f64, h: f64) -> (f64, f64) {
+    let p = |k: f64| c.eval(t + k * h).coords;
+    let d1 = (p(1.0) - p(-1.0)) / (2.0 * h);
+    let d2 = (p(1.0) - 2.0 * p(0.0) + p(-1.0)) / (h * h);
+    let d3 = (p(2.0) - 2.0 * p(1.0) + 2.0 * p(-1.0) - p(-2.0)) / (2.0 * h * h * h);
+    let cross = d1.cross(&d2);
+    (cross.norm() / d1.norm().powi(3), cross.dot(&d3) / cross.norm_squared())
+}
+
+#[test]
+fn frenet_frame_of_random_cubics_against_finite_differences() {
+    let mut rng = Rng(61);
+    for _ in 0..30 {
+        let points = random_points::<3>(&mut rng, 4);
+        let bez = Bezier::new(points.clone()).unwrap();
+        let spl = BSpline::clamped(3, points.clone()).unwrap();
+        let weights: Vec<f64> = (0..4).map(|_| rng.uniform(0.5, 2.0)).collect();
+        let rat = RationalBezier::new(points.clone(), weights.clone()).unwrap();
+        let nrb = Nurbs::new(3, spl.knots().to_vec(), points, weights).unwrap();
+        for &t in &[0.2, 0.5, 0.8] {
+            let fb = bez.frenet_frame(t).unwrap();
+            let (k, tau) = fd_curvature_torsion(&bez, t, 1e-3);
+            assert!((fb.curvature - k).abs() <= 1e-4 * k.max(1.0), "κ {} against {k}", fb.curvature);
+            assert!((fb.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0), "τ {} against {tau}", fb.torsion);
+            // The clamped cubic on four points is the Bézier curve.
+            let fs = spl.frenet_frame(t).unwrap();
+            assert!((fs.curvature - fb.curvature).abs() <= 1e-10 * fb.curvature.max(1.0));
+            assert!((fs.torsion - fb.torsion).abs() <= 1e-8 * fb.torsion.abs().max(1.0));
+            let fr = rat.frenet_frame(t).unwrap();
+            let (k, tau) = fd_curvature_torsion(&rat, t, 1e-3);
+            assert!((fr.curvature - k).abs() <= 1e-4 * k.max(1.0), "κ {} against {k}", fr.curvature);
+            assert!((fr.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0), "τ {} against {tau}", fr.torsion);
+            let fnr = nrb.frenet_frame(t).unwrap();
+            assert!((fnr.curvature - fr.curvature).abs() <= 1e-10 * fr.curvature.max(1.0));
+            assert!((fnr.torsion - fr.torsion).abs() <= 1e-8 * fr.torsion.abs().max(1.0));
+            assert!((fnr.normal.into_inner() - fr.normal.into_inner()).norm() <= 1e-10);
+        }
+    }
+}
+
+#[test]
+fn frenet_frame_is_none_where_undefined() {
+    // A straight line: C′ × C″ = 0.
+    let line = Bezier::new(vec![Point3::origin(), Point3::new(1.0, 2.0, 3.0), Point3::new(3.0, 6.0, 9.0)]).unwrap();
+    assert!(line.frenet_frame(0.3).is_none());
+    // C′ = 0 at the start (a repeated control point).
+    let cusp = Bezier::new(vec![Point3::origin(), Point3::origin(), Point3::new(1.0, 1.0, 0.0), Point3::new(2.0, 0.0, 1.0)]).unwrap();
+    assert!(cusp.frenet_frame(0.0).is_none());
+    assert!(cusp.frenet_frame(0.5).is_some());
+    // NaN parameters evaluate at the start; never a NaN frame.
+    let arc = Nurbs::arc_3d(Point3::origin(), Vector3::z(), Vector3::x(), 1.0, 0.0, 1.0).unwrap();
+    let f = arc.frenet_frame(f64::NAN).unwrap();
+    assert!(f.curvature.is_finite() && f.torsion.is_finite());
+    let spl = BSpline::clamped(1, vec![Point3::origin(), Point3::new(1.0, 0.0, 0.0)]).unwrap();
+    assert!(spl.frenet_frame(0.5).is_none());
+    let rat = RationalBezier::new(vec![Point3::origin(), Point3::new(1.0, 0.0, 0.0)], vec![1.0, 3.0]).unwrap();
+    assert!(rat.frenet_frame(0.5).is_none());
+}
