@@ -53,7 +53,10 @@ impl Nurbs<3> {
         start: f64,
         end: f64,
     ) -> Result<Nurbs<3>, Error> {
-        if !center.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE) {
+        if !center
+            .iter()
+            .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+        {
             return Err(Error::InvalidCenter3 {
                 center: [center.x, center.y, center.z],
             });
@@ -66,7 +69,7 @@ impl Nurbs<3> {
             return Err(frame_error);
         };
         let projected = d.into_inner() - n.into_inner() * d.dot(&n);
-        if !(projected.norm() > 1e-12) {
+        if projected.norm().is_nan() || projected.norm() <= 1e-12 {
             return Err(frame_error);
         }
         let Some(e1) = unit_direction(projected) else {
@@ -119,7 +122,10 @@ impl Nurbs<2> {
         start: f64,
         end: f64,
     ) -> Result<Nurbs<2>, Error> {
-        if !center.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE) {
+        if !center
+            .iter()
+            .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+        {
             return Err(Error::InvalidCenter { center });
         }
         for radius in [radii.0, radii.1] {

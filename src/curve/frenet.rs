@@ -52,7 +52,12 @@ impl FrenetFrame {
     /// The frame from the first three derivatives; `None` where it is not
     /// defined (module docs).
     fn from_derivatives(d1: Vector3<f64>, d2: Vector3<f64>, d3: Vector3<f64>) -> Option<Self> {
-        if !(d1.iter().chain(d2.iter()).chain(d3.iter()).all(|x| x.is_finite())) {
+        if !(d1
+            .iter()
+            .chain(d2.iter())
+            .chain(d3.iter())
+            .all(|x| x.is_finite()))
+        {
             return None;
         }
         // Scaled so that no product over- or underflows: the frame does not
@@ -65,7 +70,7 @@ impl FrenetFrame {
         let (u1, u2) = (d1 / m1, d2 / m2);
         let cross = u1.cross(&u2);
         let (n1, n2, nc) = (u1.norm(), u2.norm(), scaled_norm(cross));
-        if !(nc > 16.0 * f64::EPSILON * n1 * n2) {
+        if nc.is_nan() || nc <= 16.0 * f64::EPSILON * n1 * n2 {
             return None;
         }
         let tangent = Unit::new_normalize(u1);

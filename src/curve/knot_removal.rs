@@ -40,7 +40,12 @@ use nalgebra::{Point, SVector};
 /// The knot vector and control values after removing one copy of `u`
 /// (an interior knot of `knots`), by the two-sided solve of the module
 /// docs; `None` when a division is degenerate.
-fn remove_once<T: Coefficient>(knots: &[f64], p: usize, control: &[T], u: f64) -> Option<(Vec<f64>, Vec<T>)> {
+fn remove_once<T: Coefficient>(
+    knots: &[f64],
+    p: usize,
+    control: &[T],
+    u: f64,
+) -> Option<(Vec<f64>, Vec<T>)> {
     let first = knots.iter().position(|&k| k == u)?;
     let mut reduced = knots.to_vec();
     reduced.remove(first);
@@ -73,14 +78,14 @@ fn remove_once<T: Coefficient>(knots: &[f64], p: usize, control: &[T], u: f64) -
         let mid = lo + (count - 1) / 2;
         for j in lo..=mid {
             let a = alpha(j);
-            if !(a > 0.0) {
+            if a.is_nan() || a <= 0.0 {
                 return None;
             }
             q[j] = (control[j] - q[j - 1] * (1.0 - a)) * (1.0 / a);
         }
         for j in (mid + 2..=hi + 1).rev() {
             let a = alpha(j);
-            if !(a < 1.0) {
+            if a.is_nan() || a >= 1.0 {
                 return None;
             }
             q[j - 1] = (control[j] - q[j] * a) * (1.0 / (1.0 - a));
@@ -144,7 +149,12 @@ impl<const D: usize> BSpline<D> {
     /// [`Error::InvalidTolerance`] unless `tolerance` is finite and
     /// positive; [`Error::NotAnInteriorKnot`] unless `t` is a knot strictly
     /// inside the domain (NaN included).
-    pub fn remove_knot(&self, t: f64, times: usize, tolerance: f64) -> Result<(BSpline<D>, usize), Error> {
+    pub fn remove_knot(
+        &self,
+        t: f64,
+        times: usize,
+        tolerance: f64,
+    ) -> Result<(BSpline<D>, usize), Error> {
         check_tolerance(tolerance)?;
         let u = interior_knot(self.knots(), self.domain(), t)?;
         let p = self.degree();
@@ -170,7 +180,7 @@ impl<const D: usize> BSpline<D> {
                 .iter()
                 .zip(self.points())
                 .fold(0.0_f64, |m, (a, b)| m.max(scaled_norm(a - b)));
-            if !(deviation <= tolerance) {
+            if deviation.is_nan() || deviation > tolerance {
                 break;
             }
             current = candidate;
@@ -205,7 +215,12 @@ impl<const D: usize> Nurbs<D> {
     ///
     /// # Errors
     /// As [`BSpline::remove_knot`].
-    pub fn remove_knot(&self, t: f64, times: usize, tolerance: f64) -> Result<(Nurbs<D>, usize), Error> {
+    pub fn remove_knot(
+        &self,
+        t: f64,
+        times: usize,
+        tolerance: f64,
+    ) -> Result<(Nurbs<D>, usize), Error> {
         check_tolerance(tolerance)?;
         let u = interior_knot(self.knots(), self.domain(), t)?;
         let p = self.degree();
@@ -253,7 +268,7 @@ impl<const D: usize> Nurbs<D> {
                 radius = radius.max(scaled_norm(q.coords - center));
             }
             let deviation = (da + radius * dw) / min_weight;
-            if !(deviation <= tolerance) {
+            if deviation.is_nan() || deviation > tolerance {
                 break;
             }
             current = candidate;

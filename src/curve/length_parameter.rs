@@ -237,7 +237,7 @@ fn solve(
         } else {
             lo = x;
         }
-        if !(lo < hi) {
+        if lo.is_nan() || hi.is_nan() || lo >= hi {
             break;
         }
         let v = speed(x);

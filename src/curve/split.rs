@@ -80,7 +80,7 @@ impl<const D: usize> Bezier<D> {
     /// The two halves of the curve at `t ∈ (0, 1)`, by de Casteljau
     /// subdivision: `left(s) = C(t·s)` and `right(s) = C(t + (1 − t)·s)`,
     /// `s ∈ [0, 1]` (both halves are Bézier curves on `[0, 1]`, so they are
-    /// reparametrized; see the [module docs](self)). Both have this curve's
+    /// reparametrized). Both have this curve's
     /// degree; `left` starts at `P₀`, `right` ends at `Pₙ`, and they meet at
     /// `C(t)`. The halves' control points are convex combinations of this
     /// curve's, kept in its bounding box.
@@ -146,7 +146,9 @@ impl<const D: usize> RationalBezier<D> {
         let (w_lo, w_hi) = self
             .weights()
             .iter()
-            .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &w| (lo.min(w), hi.max(w)));
+            .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &w| {
+                (lo.min(w), hi.max(w))
+            });
         // Scaled by a power of two so that the largest weight is near 1.
         let scale = super::power_of_two_near(w_hi);
         let h: Vec<Homogeneous<D>> = self
@@ -251,4 +253,3 @@ impl<const D: usize> Nurbs<D> {
         Ok((Nurbs::new(p, lk, lp, lw)?, Nurbs::new(p, rk, rp, rw)?))
     }
 }
-

@@ -161,7 +161,8 @@ impl<const D: usize> Bezier<D> {
         DefaultAllocator: Allocator<DimNameSum<Const<D>, U1>, DimNameSum<Const<D>, U1>>,
     {
         self.try_transformed(t).unwrap_or_else(|_| {
-            Bezier::new(saturated_images(Matrix::of_unchecked(t), self.points())).unwrap_or_else(|_| self.clone())
+            Bezier::new(saturated_images(Matrix::of_unchecked(t), self.points()))
+                .unwrap_or_else(|_| self.clone())
         })
     }
 
@@ -218,8 +219,11 @@ impl<const D: usize> RationalBezier<D> {
         DefaultAllocator: Allocator<DimNameSum<Const<D>, U1>, DimNameSum<Const<D>, U1>>,
     {
         self.try_transformed(t).unwrap_or_else(|_| {
-            RationalBezier::new(saturated_images(Matrix::of_unchecked(t), self.points()), self.weights().to_vec())
-                .unwrap_or_else(|_| self.clone())
+            RationalBezier::new(
+                saturated_images(Matrix::of_unchecked(t), self.points()),
+                self.weights().to_vec(),
+            )
+            .unwrap_or_else(|_| self.clone())
         })
     }
 
@@ -242,7 +246,10 @@ impl<const D: usize> RationalBezier<D> {
         Const<D>: DimNameAdd<U1>,
         DefaultAllocator: Allocator<DimNameSum<Const<D>, U1>, DimNameSum<Const<D>, U1>>,
     {
-        RationalBezier::new(affine_images(Matrix::of(t), self.points())?, self.weights().to_vec())
+        RationalBezier::new(
+            affine_images(Matrix::of(t), self.points())?,
+            self.weights().to_vec(),
+        )
     }
 }
 
@@ -297,7 +304,11 @@ impl<const D: usize> BSpline<D> {
         Const<D>: DimNameAdd<U1>,
         DefaultAllocator: Allocator<DimNameSum<Const<D>, U1>, DimNameSum<Const<D>, U1>>,
     {
-        BSpline::new(self.degree(), self.knots().to_vec(), affine_images(Matrix::of(t), self.points())?)
+        BSpline::new(
+            self.degree(),
+            self.knots().to_vec(),
+            affine_images(Matrix::of(t), self.points())?,
+        )
     }
 }
 
@@ -327,8 +338,13 @@ impl<const D: usize> Nurbs<D> {
     {
         self.try_transformed(t).unwrap_or_else(|_| {
             let points = saturated_images(Matrix::of_unchecked(t), self.points());
-            Nurbs::new(self.degree(), self.knots().to_vec(), points, self.weights().to_vec())
-                .unwrap_or_else(|_| self.clone())
+            Nurbs::new(
+                self.degree(),
+                self.knots().to_vec(),
+                points,
+                self.weights().to_vec(),
+            )
+            .unwrap_or_else(|_| self.clone())
         })
     }
 
@@ -353,7 +369,12 @@ impl<const D: usize> Nurbs<D> {
         DefaultAllocator: Allocator<DimNameSum<Const<D>, U1>, DimNameSum<Const<D>, U1>>,
     {
         let points = affine_images(Matrix::of(t), self.points())?;
-        Nurbs::new(self.degree(), self.knots().to_vec(), points, self.weights().to_vec())
+        Nurbs::new(
+            self.degree(),
+            self.knots().to_vec(),
+            points,
+            self.weights().to_vec(),
+        )
     }
 
     /// The image of the curve under the projective map with matrix
@@ -417,13 +438,17 @@ fn projective_parts<const D: usize>(
     weights: &[f64],
 ) -> Result<(Vec<Point<f64, D>>, Vec<f64>), Error> {
     let denominators: Vec<f64> = points.iter().map(|p| m.denominator(p)).collect();
-    let sign = if denominators.iter().all(|&d| d < 0.0) { -1.0 } else { 1.0 };
+    let sign = if denominators.iter().all(|&d| d < 0.0) {
+        -1.0
+    } else {
+        1.0
+    };
     let mut images = Vec::with_capacity(denominators.len());
     let mut new_weights = Vec::with_capacity(denominators.len());
     for (index, ((p, &w), &d)) in points.iter().zip(weights).zip(&denominators).enumerate() {
         let d = sign * d;
         let weight = w * d;
-        if !(weight > 0.0) {
+        if weight.is_nan() || weight <= 0.0 {
             return Err(Error::ProjectiveWeightNotPositive { index, weight });
         }
         images.push(Point::from(m.affine(p) * sign / d));
@@ -433,10 +458,7 @@ fn projective_parts<const D: usize>(
 }
 
 /// The NURBS of the projective image, with the curve's degree and knots.
-fn projective_image<const D: usize>(
-    m: &Matrix<D>,
-    curve: &Nurbs<D>,
-) -> Result<Nurbs<D>, Error> {
+fn projective_image<const D: usize>(m: &Matrix<D>, curve: &Nurbs<D>) -> Result<Nurbs<D>, Error> {
     let (points, weights) = projective_parts(m, curve.points(), curve.weights())?;
     validate_points(&points)?;
     Nurbs::new(curve.degree(), curve.knots().to_vec(), points, weights)

@@ -36,7 +36,11 @@ impl Rng {
         Point2::new(self.uniform(-r, r), self.uniform(-r, r))
     }
     fn point3(&mut self, r: f64) -> Point3<f64> {
-        Point3::new(self.uniform(-r, r), self.uniform(-r, r), self.uniform(-r, r))
+        Point3::new(
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+        )
     }
 }
 
@@ -61,7 +65,10 @@ fn random_rays(seed: u64) -> Vec<Ray> {
 fn same_hits(a: &impl Intersect, b: &impl Intersect, rays: &[Ray]) -> usize {
     let mut hits = 0;
     for ray in rays {
-        let (ha, hb) = (a.intersect(ray, 0.0, f64::INFINITY), b.intersect(ray, 0.0, f64::INFINITY));
+        let (ha, hb) = (
+            a.intersect(ray, 0.0, f64::INFINITY),
+            b.intersect(ray, 0.0, f64::INFINITY),
+        );
         match (ha, hb) {
             (None, None) => {}
             (Some(x), Some(y)) => {
@@ -90,7 +97,10 @@ fn check_wrapped_profile<C: Curve<2> + Clone + Send + Sync + 'static>(profile: C
     let by_ref = Revolution::new(&profile);
     assert!(by_ref.has_exact_intersector());
     let hits = same_hits(&plain, &by_ref, &rays);
-    assert!(hits > 100, "only {hits} of 1000 rays hit: the test would prove little");
+    assert!(
+        hits > 100,
+        "only {hits} of 1000 rays hit: the test would prove little"
+    );
 
     let boxed = Revolution::new(Box::new(profile.clone()));
     assert!(boxed.has_exact_intersector());
@@ -148,7 +158,11 @@ fn wrapped_nurbs_profile_keeps_the_exact_intersector() {
 #[test]
 fn wrappers_forward_every_method() {
     let curve = RationalBezier::new(
-        vec![Point2::new(1.0, 0.0), Point2::new(1.0, 1.0), Point2::new(0.0, 1.0)],
+        vec![
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(0.0, 1.0),
+        ],
         vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
     )
     .unwrap();
@@ -174,6 +188,14 @@ fn wrappers_forward_every_method() {
         assert!(w.rational_bezier_spans().is_some() && w.bezier_spans().is_none());
         assert_eq!(w.nearest_point(&q), curve.nearest_point(&q));
         assert_eq!(w.arc_length(1e-12), curve.arc_length(1e-12));
+        assert_eq!(
+            w.parameter_at_length(0.5, 1e-10),
+            curve.parameter_at_length(0.5, 1e-10)
+        );
+        assert_eq!(
+            w.divide_by_length(3, 1e-10),
+            curve.divide_by_length(3, 1e-10)
+        );
         assert_eq!(w.discretize(7), curve.discretize(7));
         assert_eq!(w.try_discretize(7), curve.try_discretize(7));
     }
@@ -196,7 +218,11 @@ fn assert_close<const D: usize>(
 
 fn random_points<const D: usize>(rng: &mut Rng, n: usize) -> Vec<revolve::nalgebra::Point<f64, D>> {
     (0..n)
-        .map(|_| revolve::nalgebra::Point::from(revolve::nalgebra::SVector::<f64, D>::from_fn(|_, _| rng.uniform(-5.0, 5.0))))
+        .map(|_| {
+            revolve::nalgebra::Point::from(revolve::nalgebra::SVector::<f64, D>::from_fn(|_, _| {
+                rng.uniform(-5.0, 5.0)
+            }))
+        })
         .collect()
 }
 
@@ -283,7 +309,12 @@ fn bspline_split_at_a_jump_takes_the_two_limits() {
     let c = BSpline::new(
         1,
         vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0],
-        vec![Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(1.0, 5.0), Point2::new(2.0, 5.0)],
+        vec![
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 5.0),
+            Point2::new(2.0, 5.0),
+        ],
     )
     .unwrap();
     let (l, r) = c.split(0.5).unwrap();
@@ -304,7 +335,12 @@ fn nurbs_split_halves_keep_the_parameters() {
         assert_eq!(r.eval(1.0), circle.eval(1.0));
         for s in spline_samples((0.0, 1.0), 80) {
             let half = if s <= t { &l } else { &r };
-            assert_close(&half.eval(s), &circle.eval(s), 64.0 * EPS, "half against circle");
+            assert_close(
+                &half.eval(s),
+                &circle.eval(s),
+                64.0 * EPS,
+                "half against circle",
+            );
             assert!(((half.eval(s) - Point2::new(1.0, -2.0)).norm() - 3.0).abs() < 1e-14);
         }
     }
@@ -313,11 +349,21 @@ fn nurbs_split_halves_keep_the_parameters() {
 #[test]
 fn split_refuses_the_ends_nan_and_outside() {
     let bez = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)]).unwrap();
-    let rat = RationalBezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)], vec![1.0, 2.0]).unwrap();
+    let rat = RationalBezier::new(
+        vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)],
+        vec![1.0, 2.0],
+    )
+    .unwrap();
     let spl = BSpline::clamped(2, random_points::<2>(&mut Rng(13), 5)).unwrap();
     let nrb = Nurbs::circle(Point2::origin(), 1.0).unwrap();
-    let at_end = |r: Result<(), Error>| assert!(matches!(r, Err(Error::SplitAtDomainEnd { .. })), "{r:?}");
-    let outside = |r: Result<(), Error>| assert!(matches!(r, Err(Error::ParameterOutOfDomain { .. })), "{r:?}");
+    let at_end =
+        |r: Result<(), Error>| assert!(matches!(r, Err(Error::SplitAtDomainEnd { .. })), "{r:?}");
+    let outside = |r: Result<(), Error>| {
+        assert!(
+            matches!(r, Err(Error::ParameterOutOfDomain { .. })),
+            "{r:?}"
+        )
+    };
     for t in [0.0, 1.0] {
         at_end(bez.split(t).map(|_| ()));
         at_end(rat.split(t).map(|_| ()));
@@ -366,7 +412,10 @@ fn assert_commutes<const D: usize>(
     for s in spline_samples(original.domain(), 40) {
         let want = map(&original.eval(s));
         let got = image.eval(s);
-        assert!((want - got).amax() <= 1e3 * EPS * scale, "at {s}: {got:?} against {want:?}");
+        assert!(
+            (want - got).amax() <= 1e3 * EPS * scale,
+            "at {s}: {got:?} against {want:?}"
+        );
     }
 }
 
@@ -402,7 +451,10 @@ fn affine_transforms_commute_with_evaluation() {
         let circle = Nurbs::circle(rng.point2(3.0), 2.0).unwrap();
         assert_commutes(&circle, &circle.transformed(&t2), |p| t2 * p, 50.0);
         // The fallible form gives the same curve.
-        assert_eq!(circle.try_transformed(&t2).unwrap(), circle.transformed(&t2));
+        assert_eq!(
+            circle.try_transformed(&t2).unwrap(),
+            circle.transformed(&t2)
+        );
     }
 }
 
@@ -414,13 +466,24 @@ fn projective_transforms_commute_with_evaluation() {
         // A perspective with a small projective row keeps the curve away
         // from the plane at infinity (most of the time: others are refused).
         let mut m = Matrix4::from_fn(|_, _| rng.uniform(-2.0, 2.0));
-        m[(3, 3)] = rng.uniform(2.0, 4.0) * if rng.uniform(0.0, 1.0) < 0.5 { -1.0 } else { 1.0 };
+        m[(3, 3)] = rng.uniform(2.0, 4.0)
+            * if rng.uniform(0.0, 1.0) < 0.5 {
+                -1.0
+            } else {
+                1.0
+            };
         for j in 0..3 {
             m[(3, j)] = rng.uniform(-0.2, 0.2);
         }
         let map = Projective3::from_matrix_unchecked(m);
         let weights = (0..6).map(|_| rng.uniform(0.3, 3.0)).collect();
-        let nrb = Nurbs::new(2, vec![0.0, 0.0, 0.0, 0.3, 0.6, 0.8, 1.0, 1.0, 1.0], random_points::<3>(&mut rng, 6), weights).unwrap();
+        let nrb = Nurbs::new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.3, 0.6, 0.8, 1.0, 1.0, 1.0],
+            random_points::<3>(&mut rng, 6),
+            weights,
+        )
+        .unwrap();
         // The independent reference: the point mapped in homogeneous form.
         let reference = |p: &Point3<f64>| {
             let h = m * p.to_homogeneous();
@@ -432,19 +495,32 @@ fn projective_transforms_commute_with_evaluation() {
                 assert!(image.weights().iter().all(|&w| w > 0.0));
                 assert_commutes(&nrb, &image, reference, 50.0);
             }
-            Err(e) => assert!(matches!(e, Error::ProjectiveWeightNotPositive { .. }), "{e:?}"),
+            Err(e) => assert!(
+                matches!(e, Error::ProjectiveWeightNotPositive { .. }),
+                "{e:?}"
+            ),
         }
     }
     assert!(checked > 150, "only {checked} projective images checked");
     // 2D: a circle under a perspective is a conic, the images of its points.
     let circle = Nurbs::circle(Point2::new(0.5, 0.0), 1.0).unwrap();
     let m = Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 1.0, 0.3, -0.1, 2.0);
-    let image = circle.transformed_projective(&Projective2::from_matrix_unchecked(m)).unwrap();
-    assert_commutes(&circle, &image, |p| Projective2::from_matrix_unchecked(m) * p, 10.0);
+    let image = circle
+        .transformed_projective(&Projective2::from_matrix_unchecked(m))
+        .unwrap();
+    assert_commutes(
+        &circle,
+        &image,
+        |p| Projective2::from_matrix_unchecked(m) * p,
+        10.0,
+    );
     // An affine matrix as a projective one gives `transformed`'s curve.
     let t = random_affine2(&mut rng);
     let projective = Projective2::from_matrix_unchecked(*t.matrix());
-    let (a, b) = (circle.transformed(&t), circle.transformed_projective(&projective).unwrap());
+    let (a, b) = (
+        circle.transformed(&t),
+        circle.transformed_projective(&projective).unwrap(),
+    );
     for s in spline_samples((0.0, 1.0), 20) {
         assert_close(&a.eval(s), &b.eval(s), 1e3 * EPS, "affine as projective");
     }
@@ -453,28 +529,70 @@ fn projective_transforms_commute_with_evaluation() {
 #[test]
 fn transform_errors_are_named() {
     let bez = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1e99, 2.0)]).unwrap();
-    let nan = Affine2::from_matrix_unchecked(Matrix3::new(f64::NAN, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    let nan = Affine2::from_matrix_unchecked(Matrix3::new(
+        f64::NAN,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ));
     assert_eq!(bez.try_transformed(&nan), Err(Error::InvalidTransform));
-    let grow = Affine2::from_matrix_unchecked(Matrix3::new(100.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
-    assert!(matches!(bez.try_transformed(&grow), Err(Error::CoordinateTooLarge { index: 1, .. })));
-    let overflow = Affine2::from_matrix_unchecked(Matrix3::new(1e300, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
-    assert!(matches!(bez.try_transformed(&overflow), Err(Error::NonFinitePoint { index: 1 })));
+    let grow =
+        Affine2::from_matrix_unchecked(Matrix3::new(100.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    assert!(matches!(
+        bez.try_transformed(&grow),
+        Err(Error::CoordinateTooLarge { index: 1, .. })
+    ));
+    let overflow =
+        Affine2::from_matrix_unchecked(Matrix3::new(1e300, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
+    assert!(matches!(
+        bez.try_transformed(&overflow),
+        Err(Error::NonFinitePoint { index: 1 })
+    ));
     // The infallible form never gives NaN: saturated points, or the curve itself.
     for t in [nan, grow, overflow] {
         let image = bez.transformed(&t);
         for s in spline_samples((0.0, 1.0), 10) {
             assert!(image.eval(s).iter().all(|x| x.is_finite()));
         }
-        let spl = BSpline::clamped(1, bez.points().to_vec()).unwrap().transformed(&t);
+        let spl = BSpline::clamped(1, bez.points().to_vec())
+            .unwrap()
+            .transformed(&t);
         assert!(spl.points().iter().all(|p| p.iter().all(|x| x.is_finite())));
     }
     let circle = Nurbs::circle(Point2::origin(), 1.0).unwrap();
     // The line x = 0.5 (the plane at infinity's preimage) cuts the circle.
-    let cut = Projective2::from_matrix_unchecked(Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -0.5));
-    assert!(matches!(circle.transformed_projective(&cut), Err(Error::ProjectiveWeightNotPositive { .. })));
-    let bad = Projective2::from_matrix_unchecked(Matrix3::new(1.0, 0.0, 0.0, 0.0, f64::INFINITY, 0.0, 0.0, 0.0, 1.0));
-    assert_eq!(circle.transformed_projective(&bad), Err(Error::InvalidTransform));
-    let rat = RationalBezier::new(vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)], vec![1.0, 2.0]).unwrap();
+    let cut = Projective2::from_matrix_unchecked(Matrix3::new(
+        1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -0.5,
+    ));
+    assert!(matches!(
+        circle.transformed_projective(&cut),
+        Err(Error::ProjectiveWeightNotPositive { .. })
+    ));
+    let bad = Projective2::from_matrix_unchecked(Matrix3::new(
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        f64::INFINITY,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ));
+    assert_eq!(
+        circle.transformed_projective(&bad),
+        Err(Error::InvalidTransform)
+    );
+    let rat = RationalBezier::new(
+        vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0)],
+        vec![1.0, 2.0],
+    )
+    .unwrap();
     assert_eq!(rat.try_transformed(&nan), Err(Error::InvalidTransform));
     assert_eq!(circle.try_transformed(&nan), Err(Error::InvalidTransform));
 }
@@ -498,11 +616,17 @@ fn parameter_at_length_on_a_circle_is_the_angle_times_the_radius() {
         }
         // Closed form: angle = s / r; the arc length error is at most the
         // tolerance, and rounding of the point adds a few ε.
-        assert!((angle * r - s).abs() <= tolerance + 1e-13, "s = {s}: angle·r = {}", angle * r);
+        assert!(
+            (angle * r - s).abs() <= tolerance + 1e-13,
+            "s = {s}: angle·r = {}",
+            angle * r
+        );
     }
     assert_eq!(circle.parameter_at_length(0.0, tolerance).unwrap(), 0.0);
     // The whole length: the end, or a parameter within the tolerance of it.
-    let t = circle.parameter_at_length(std::f64::consts::TAU * r, 1e-9).unwrap();
+    let t = circle
+        .parameter_at_length(std::f64::consts::TAU * r, 1e-9)
+        .unwrap();
     assert!((1.0 - t) * std::f64::consts::TAU * r <= 1e-9 + 1e-13, "{t}");
 }
 
@@ -510,15 +634,30 @@ fn parameter_at_length_on_a_circle_is_the_angle_times_the_radius() {
 fn parameter_at_length_on_a_segment_with_non_uniform_speed() {
     // x(t) = 4·(3t² − 2t³) (a cubic Bézier 0, 0, 4, 4 on a line): the length
     // from 0 is x(t) itself, monotone, speed zero at both ends.
-    let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.0, 0.0), Point2::new(4.0, 0.0), Point2::new(4.0, 0.0)]).unwrap();
+    let c = Bezier::new(vec![
+        Point2::new(0.0, 0.0),
+        Point2::new(0.0, 0.0),
+        Point2::new(4.0, 0.0),
+        Point2::new(4.0, 0.0),
+    ])
+    .unwrap();
     // The same in 3D, along a slanted line: length = 5·x/4 … scaled by 5/4.
-    let d = Bezier::new(vec![Point3::origin(), Point3::origin(), Point3::new(4.0, 3.0, 0.0), Point3::new(4.0, 3.0, 0.0)]).unwrap();
+    let d = Bezier::new(vec![
+        Point3::origin(),
+        Point3::origin(),
+        Point3::new(4.0, 3.0, 0.0),
+        Point3::new(4.0, 3.0, 0.0),
+    ])
+    .unwrap();
     let tolerance = 1e-11;
     for k in 0..=16 {
         let s = 4.0 * k as f64 / 16.0;
         let t = c.parameter_at_length(s, tolerance).unwrap();
         let length = 4.0 * (3.0 * t * t - 2.0 * t * t * t);
-        assert!((length - s).abs() <= tolerance + 8.0 * EPS * 4.0, "s = {s}, t = {t}");
+        assert!(
+            (length - s).abs() <= tolerance + 8.0 * EPS * 4.0,
+            "s = {s}, t = {t}"
+        );
         let t3 = d.parameter_at_length(1.25 * s, tolerance).unwrap();
         let length3 = 5.0 * (3.0 * t3 * t3 - 2.0 * t3 * t3 * t3);
         assert!((length3 - 1.25 * s).abs() <= tolerance + 8.0 * EPS * 5.0);
@@ -541,7 +680,13 @@ fn length_to_the_parameter_found_is_within_tolerance() {
         let n = degree + 1 + (rng.next_u64() % 5) as usize;
         let weights: Vec<f64> = (0..n).map(|_| rng.uniform(0.5, 2.0)).collect();
         let base = BSpline::clamped(degree, random_points::<3>(&mut rng, n)).unwrap();
-        let curve = Nurbs::new(degree, base.knots().to_vec(), base.points().to_vec(), weights).unwrap();
+        let curve = Nurbs::new(
+            degree,
+            base.knots().to_vec(),
+            base.points().to_vec(),
+            weights,
+        )
+        .unwrap();
         let total = curve.arc_length(1e-11).unwrap();
         let tolerance = 1e-8;
         for k in 0..=6 {
@@ -556,7 +701,10 @@ fn length_to_the_parameter_found_is_within_tolerance() {
                 Err(Error::SplitAtDomainEnd { .. }) => total.length,
                 Err(e) => panic!("{e:?}"),
             };
-            assert!((measured - s).abs() <= tolerance + 2e-11, "s = {s}: L(t) = {measured}");
+            assert!(
+                (measured - s).abs() <= tolerance + 2e-11,
+                "s = {s}: L(t) = {measured}"
+            );
         }
         let ts = curve.divide_by_length(5, tolerance).unwrap();
         assert!(ts.windows(2).all(|w| w[0] <= w[1]));
@@ -568,17 +716,35 @@ fn length_to_the_parameter_found_is_within_tolerance() {
 fn length_parameter_errors_are_named() {
     let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(3.0, 4.0)]).unwrap();
     for s in [-1.0, 5.5, f64::NAN, f64::INFINITY] {
-        assert!(matches!(c.parameter_at_length(s, 1e-9), Err(Error::LengthOutOfRange { .. })), "{s}");
+        assert!(
+            matches!(
+                c.parameter_at_length(s, 1e-9),
+                Err(Error::LengthOutOfRange { .. })
+            ),
+            "{s}"
+        );
     }
     // Within the tolerance of the end: the end.
     assert_eq!(c.parameter_at_length(5.0 + 1e-10, 1e-9), Ok(1.0));
     for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(matches!(c.parameter_at_length(1.0, tol), Err(Error::InvalidTolerance { .. })));
-        assert!(matches!(c.divide_by_length(2, tol), Err(Error::InvalidTolerance { .. })));
+        assert!(matches!(
+            c.parameter_at_length(1.0, tol),
+            Err(Error::InvalidTolerance { .. })
+        ));
+        assert!(matches!(
+            c.divide_by_length(2, tol),
+            Err(Error::InvalidTolerance { .. })
+        ));
     }
     assert_eq!(c.divide_by_length(0, 1e-9), Err(Error::ZeroPieces));
-    assert!(matches!(c.divide_by_length(usize::MAX, 1e-9), Err(Error::TooManySegments { .. })));
-    assert!(matches!(c.parameter_at_length(1.0, 1e-300), Err(Error::ToleranceTooSmall { .. })));
+    assert!(matches!(
+        c.divide_by_length(usize::MAX, 1e-9),
+        Err(Error::TooManySegments { .. })
+    ));
+    assert!(matches!(
+        c.parameter_at_length(1.0, 1e-300),
+        Err(Error::ToleranceTooSmall { .. })
+    ));
 }
 
 /// A user's curve without spans: a unit-speed line, `C(t) = (t, 0)` on [0, 2].
@@ -631,12 +797,23 @@ fn inserting_then_removing_gives_back_the_control_points() {
         }
         // NURBS: the same with random weights.
         let weights: Vec<f64> = (0..n).map(|_| rng.uniform(0.5, 2.0)).collect();
-        let r = Nurbs::new(degree, c.knots().to_vec(), c.points().to_vec(), weights.clone()).unwrap();
+        let r = Nurbs::new(
+            degree,
+            c.knots().to_vec(),
+            c.points().to_vec(),
+            weights.clone(),
+        )
+        .unwrap();
         let refined = r.insert_knot(0.42, degree).unwrap();
         let (back, removed) = refined.remove_knot(0.42, degree, 1e-9).unwrap();
         assert_eq!(removed, degree);
         assert_eq!(back.knots(), r.knots());
-        for ((a, b), (v, w)) in back.points().iter().zip(r.points()).zip(back.weights().iter().zip(&weights)) {
+        for ((a, b), (v, w)) in back
+            .points()
+            .iter()
+            .zip(r.points())
+            .zip(back.weights().iter().zip(&weights))
+        {
             assert!((a - b).amax() <= 1e-11, "{a:?} against {b:?}");
             assert!((v - w).abs() <= 1e-12 * w);
         }
@@ -646,7 +823,15 @@ fn inserting_then_removing_gives_back_the_control_points() {
 #[test]
 fn essential_knots_are_not_removed() {
     // A degree-1 polyline with a real corner at its interior knot.
-    let corner = BSpline::clamped(1, vec![Point2::new(0.0, 0.0), Point2::new(1.0, 1.0), Point2::new(2.0, 0.0)]).unwrap();
+    let corner = BSpline::clamped(
+        1,
+        vec![
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(2.0, 0.0),
+        ],
+    )
+    .unwrap();
     let (same, removed) = corner.remove_knot(0.5, 1, 0.1).unwrap();
     assert_eq!(removed, 0);
     assert_eq!(same, corner);
@@ -691,14 +876,26 @@ fn removal_within_tolerance_stays_within_it() {
 fn knot_removal_errors_are_named() {
     let c = BSpline::clamped(2, random_points::<2>(&mut Rng(43), 5)).unwrap();
     for t in [0.0, 1.0, 0.2, f64::NAN, 2.0] {
-        assert!(matches!(c.remove_knot(t, 1, 1e-9), Err(Error::NotAnInteriorKnot { .. })));
+        assert!(matches!(
+            c.remove_knot(t, 1, 1e-9),
+            Err(Error::NotAnInteriorKnot { .. })
+        ));
     }
     for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(matches!(c.remove_knot(1.0 / 3.0, 1, tol), Err(Error::InvalidTolerance { .. })));
+        assert!(matches!(
+            c.remove_knot(1.0 / 3.0, 1, tol),
+            Err(Error::InvalidTolerance { .. })
+        ));
     }
     let circle = Nurbs::circle(Point2::origin(), 1.0).unwrap();
-    assert!(matches!(circle.remove_knot(0.3, 1, 1e-9), Err(Error::NotAnInteriorKnot { .. })));
-    assert!(matches!(circle.remove_knot(0.25, 1, 0.0), Err(Error::InvalidTolerance { .. })));
+    assert!(matches!(
+        circle.remove_knot(0.3, 1, 1e-9),
+        Err(Error::NotAnInteriorKnot { .. })
+    ));
+    assert!(matches!(
+        circle.remove_knot(0.25, 1, 0.0),
+        Err(Error::InvalidTolerance { .. })
+    ));
     // Zero removals asked: a copy.
     assert_eq!(c.remove_knot(1.0 / 3.0, 0, 1e-9).unwrap(), (c.clone(), 0));
 }
@@ -713,7 +910,11 @@ fn arcs_in_space_lie_on_their_circle_and_plane() {
     for i in 0..100 {
         // Half about the origin (checked to 1e-15·r), half about a far
         // centre (whose coordinates' rounding, 16ε·(|c| + r), is added).
-        let center = if i % 2 == 0 { Point3::origin() } else { rng.point3(10.0) };
+        let center = if i % 2 == 0 {
+            Point3::origin()
+        } else {
+            rng.point3(10.0)
+        };
         let normal = rng.point3(1.0).coords;
         let start_dir = rng.point3(1.0).coords;
         let radius = rng.uniform(0.1, 5.0);
@@ -727,16 +928,27 @@ fn arcs_in_space_lie_on_their_circle_and_plane() {
             let p = arc.eval(s) - center;
             // On the circle to 1e-15·r (plus the centre's rounding, ε·|c|)
             // and in the plane to the same.
-            let slack = 1e-15 * radius + 16.0 * EPS * (center.coords.amax() + radius) * f64::from(i % 2);
-            assert!((p.norm() - radius).abs() <= slack, "radius {} against {radius}", p.norm());
+            let slack =
+                1e-15 * radius + 16.0 * EPS * (center.coords.amax() + radius) * f64::from(i % 2);
+            assert!(
+                (p.norm() - radius).abs() <= slack,
+                "radius {} against {radius}",
+                p.norm()
+            );
             // The plane: the control points' and the reference normal's
             // rounding, 16ε·r, beside the slack.
-            assert!(p.dot(&n).abs() <= slack + 16.0 * EPS * radius, "off the plane by {}", p.dot(&n));
+            assert!(
+                p.dot(&n).abs() <= slack + 16.0 * EPS * radius,
+                "off the plane by {}",
+                p.dot(&n)
+            );
         }
         // The ends at the angles given, counter-clockwise about the normal.
         let at = |theta: f64| center + (e1 * theta.cos() + e2 * theta.sin()) * radius;
         assert!((arc.eval(0.0) - at(start)).norm() <= 1e-14 * (radius + center.coords.amax()));
-        assert!((arc.eval(1.0) - at(start + sweep)).norm() <= 1e-14 * (radius + center.coords.amax()));
+        assert!(
+            (arc.eval(1.0) - at(start + sweep)).norm() <= 1e-14 * (radius + center.coords.amax())
+        );
         // Counter-clockwise: (C − c) × C′ points along the normal.
         let d = arc.derivative(0.5);
         assert!((arc.eval(0.5) - center).cross(&d).dot(&n) > 0.0);
@@ -767,23 +979,62 @@ fn elliptic_arcs_satisfy_the_ellipse_equation() {
 fn conic_errors_are_named() {
     let c = Point3::origin();
     let (z, x) = (Vector3::z(), Vector3::x());
-    assert!(matches!(Nurbs::arc_3d(Point3::new(f64::NAN, 0.0, 0.0), z, x, 1.0, 0.0, 1.0), Err(Error::InvalidCenter3 { .. })));
-    assert!(matches!(Nurbs::arc_3d(Point3::new(1e101, 0.0, 0.0), z, x, 1.0, 0.0, 1.0), Err(Error::InvalidCenter3 { .. })));
-    for (n, d) in [(Vector3::zeros(), x), (z, Vector3::zeros()), (z, z * -3.0), (Vector3::new(f64::NAN, 0.0, 1.0), x), (z, Vector3::new(0.0, f64::INFINITY, 0.0))] {
-        assert!(matches!(Nurbs::arc_3d(c, n, d, 1.0, 0.0, 1.0), Err(Error::InvalidArcFrame { .. })), "{n:?} {d:?}");
+    assert!(matches!(
+        Nurbs::arc_3d(Point3::new(f64::NAN, 0.0, 0.0), z, x, 1.0, 0.0, 1.0),
+        Err(Error::InvalidCenter3 { .. })
+    ));
+    assert!(matches!(
+        Nurbs::arc_3d(Point3::new(1e101, 0.0, 0.0), z, x, 1.0, 0.0, 1.0),
+        Err(Error::InvalidCenter3 { .. })
+    ));
+    for (n, d) in [
+        (Vector3::zeros(), x),
+        (z, Vector3::zeros()),
+        (z, z * -3.0),
+        (Vector3::new(f64::NAN, 0.0, 1.0), x),
+        (z, Vector3::new(0.0, f64::INFINITY, 0.0)),
+    ] {
+        assert!(
+            matches!(
+                Nurbs::arc_3d(c, n, d, 1.0, 0.0, 1.0),
+                Err(Error::InvalidArcFrame { .. })
+            ),
+            "{n:?} {d:?}"
+        );
     }
     for r in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e101] {
-        assert!(matches!(Nurbs::arc_3d(c, z, x, r, 0.0, 1.0), Err(Error::InvalidRadius { .. })));
-        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (r, 1.0), 0.0, 1.0), Err(Error::InvalidRadius { .. })));
-        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (1.0, r), 0.0, 1.0), Err(Error::InvalidRadius { .. })));
+        assert!(matches!(
+            Nurbs::arc_3d(c, z, x, r, 0.0, 1.0),
+            Err(Error::InvalidRadius { .. })
+        ));
+        assert!(matches!(
+            Nurbs::ellipse_arc(Point2::origin(), (r, 1.0), 0.0, 1.0),
+            Err(Error::InvalidRadius { .. })
+        ));
+        assert!(matches!(
+            Nurbs::ellipse_arc(Point2::origin(), (1.0, r), 0.0, 1.0),
+            Err(Error::InvalidRadius { .. })
+        ));
     }
     for (s, e) in [(1.0, 1.0), (1.0, 0.0), (0.0, 7.0), (f64::NAN, 1.0)] {
-        assert!(matches!(Nurbs::arc_3d(c, z, x, 1.0, s, e), Err(Error::InvalidSweep { .. })));
-        assert!(matches!(Nurbs::ellipse_arc(Point2::origin(), (1.0, 2.0), s, e), Err(Error::InvalidSweep { .. })));
+        assert!(matches!(
+            Nurbs::arc_3d(c, z, x, 1.0, s, e),
+            Err(Error::InvalidSweep { .. })
+        ));
+        assert!(matches!(
+            Nurbs::ellipse_arc(Point2::origin(), (1.0, 2.0), s, e),
+            Err(Error::InvalidSweep { .. })
+        ));
     }
-    assert!(matches!(Nurbs::ellipse_arc(Point2::new(0.0, f64::NAN), (1.0, 2.0), 0.0, 1.0), Err(Error::InvalidCenter { .. })));
+    assert!(matches!(
+        Nurbs::ellipse_arc(Point2::new(0.0, f64::NAN), (1.0, 2.0), 0.0, 1.0),
+        Err(Error::InvalidCenter { .. })
+    ));
     // A control point beyond the limit: a centre at the limit plus a radius.
-    assert!(matches!(Nurbs::arc_3d(Point3::new(1e100, 0.0, 0.0), z, x, 1e100, 0.0, 1.0), Err(Error::CoordinateTooLarge { .. })));
+    assert!(matches!(
+        Nurbs::arc_3d(Point3::new(1e100, 0.0, 0.0), z, x, 1e100, 0.0, 1.0),
+        Err(Error::CoordinateTooLarge { .. })
+    ));
 }
 
 // ---------------------------------------------------------------------------
@@ -802,7 +1053,11 @@ fn frenet_frame_of_a_circle_in_space() {
         for s in spline_samples((0.0, 1.0), 32) {
             let f = arc.frenet_frame(s).unwrap();
             // Closed form: κ = 1/r, τ = 0, B = n, N toward the centre.
-            assert!((f.curvature * radius - 1.0).abs() <= 1e-12, "κ·r = {}", f.curvature * radius);
+            assert!(
+                (f.curvature * radius - 1.0).abs() <= 1e-12,
+                "κ·r = {}",
+                f.curvature * radius
+            );
             assert!(f.torsion.abs() * radius <= 1e-10, "τ = {}", f.torsion);
             assert!((f.binormal.into_inner() - n).norm() <= 1e-12);
             let inward = (center - arc.eval(s)).normalize();
@@ -823,7 +1078,10 @@ fn fd_curvature_torsion(c: &impl Curve<3>, t: f64, h: f64) -> (f64, f64) {
     let d2 = (p(1.0) - 2.0 * p(0.0) + p(-1.0)) / (h * h);
     let d3 = (p(2.0) - 2.0 * p(1.0) + 2.0 * p(-1.0) - p(-2.0)) / (2.0 * h * h * h);
     let cross = d1.cross(&d2);
-    (cross.norm() / d1.norm().powi(3), cross.dot(&d3) / cross.norm_squared())
+    (
+        cross.norm() / d1.norm().powi(3),
+        cross.dot(&d3) / cross.norm_squared(),
+    )
 }
 
 #[test]
@@ -839,16 +1097,32 @@ fn frenet_frame_of_random_cubics_against_finite_differences() {
         for &t in &[0.2, 0.5, 0.8] {
             let fb = bez.frenet_frame(t).unwrap();
             let (k, tau) = fd_curvature_torsion(&bez, t, 1e-3);
-            assert!((fb.curvature - k).abs() <= 1e-4 * k.max(1.0), "κ {} against {k}", fb.curvature);
-            assert!((fb.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0), "τ {} against {tau}", fb.torsion);
+            assert!(
+                (fb.curvature - k).abs() <= 1e-4 * k.max(1.0),
+                "κ {} against {k}",
+                fb.curvature
+            );
+            assert!(
+                (fb.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0),
+                "τ {} against {tau}",
+                fb.torsion
+            );
             // The clamped cubic on four points is the Bézier curve.
             let fs = spl.frenet_frame(t).unwrap();
             assert!((fs.curvature - fb.curvature).abs() <= 1e-10 * fb.curvature.max(1.0));
             assert!((fs.torsion - fb.torsion).abs() <= 1e-8 * fb.torsion.abs().max(1.0));
             let fr = rat.frenet_frame(t).unwrap();
             let (k, tau) = fd_curvature_torsion(&rat, t, 1e-3);
-            assert!((fr.curvature - k).abs() <= 1e-4 * k.max(1.0), "κ {} against {k}", fr.curvature);
-            assert!((fr.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0), "τ {} against {tau}", fr.torsion);
+            assert!(
+                (fr.curvature - k).abs() <= 1e-4 * k.max(1.0),
+                "κ {} against {k}",
+                fr.curvature
+            );
+            assert!(
+                (fr.torsion - tau).abs() <= 1e-3 * tau.abs().max(1.0),
+                "τ {} against {tau}",
+                fr.torsion
+            );
             let fnr = nrb.frenet_frame(t).unwrap();
             assert!((fnr.curvature - fr.curvature).abs() <= 1e-10 * fr.curvature.max(1.0));
             assert!((fnr.torsion - fr.torsion).abs() <= 1e-8 * fr.torsion.abs().max(1.0));
@@ -860,10 +1134,21 @@ fn frenet_frame_of_random_cubics_against_finite_differences() {
 #[test]
 fn frenet_frame_is_none_where_undefined() {
     // A straight line: C′ × C″ = 0.
-    let line = Bezier::new(vec![Point3::origin(), Point3::new(1.0, 2.0, 3.0), Point3::new(3.0, 6.0, 9.0)]).unwrap();
+    let line = Bezier::new(vec![
+        Point3::origin(),
+        Point3::new(1.0, 2.0, 3.0),
+        Point3::new(3.0, 6.0, 9.0),
+    ])
+    .unwrap();
     assert!(line.frenet_frame(0.3).is_none());
     // C′ = 0 at the start (a repeated control point).
-    let cusp = Bezier::new(vec![Point3::origin(), Point3::origin(), Point3::new(1.0, 1.0, 0.0), Point3::new(2.0, 0.0, 1.0)]).unwrap();
+    let cusp = Bezier::new(vec![
+        Point3::origin(),
+        Point3::origin(),
+        Point3::new(1.0, 1.0, 0.0),
+        Point3::new(2.0, 0.0, 1.0),
+    ])
+    .unwrap();
     assert!(cusp.frenet_frame(0.0).is_none());
     assert!(cusp.frenet_frame(0.5).is_some());
     // NaN parameters evaluate at the start; never a NaN frame.
@@ -872,6 +1157,59 @@ fn frenet_frame_is_none_where_undefined() {
     assert!(f.curvature.is_finite() && f.torsion.is_finite());
     let spl = BSpline::clamped(1, vec![Point3::origin(), Point3::new(1.0, 0.0, 0.0)]).unwrap();
     assert!(spl.frenet_frame(0.5).is_none());
-    let rat = RationalBezier::new(vec![Point3::origin(), Point3::new(1.0, 0.0, 0.0)], vec![1.0, 3.0]).unwrap();
+    let rat = RationalBezier::new(
+        vec![Point3::origin(), Point3::new(1.0, 0.0, 0.0)],
+        vec![1.0, 3.0],
+    )
+    .unwrap();
     assert!(rat.frenet_frame(0.5).is_none());
+}
+
+#[test]
+fn new_errors_name_the_problem() {
+    let cases = [
+        (
+            Error::SplitAtDomainEnd {
+                t: 1.0,
+                domain: (0.0, 1.0),
+            },
+            "cannot split at 1",
+        ),
+        (Error::InvalidTransform, "NaN or infinite entry"),
+        (
+            Error::ProjectiveWeightNotPositive {
+                index: 2,
+                weight: -0.5,
+            },
+            "control point 2 the weight -0.5",
+        ),
+        (
+            Error::LengthOutOfRange {
+                s: 7.0,
+                length: 5.0,
+            },
+            "arc length 7 is outside [0, 5]",
+        ),
+        (Error::ZeroPieces, "zero pieces"),
+        (
+            Error::NotAnInteriorKnot { t: 0.3 },
+            "0.3 is not an interior knot",
+        ),
+        (
+            Error::InvalidCenter3 {
+                center: [f64::NAN, 0.0, 0.0],
+            },
+            "arc center (NaN, 0, 0)",
+        ),
+        (
+            Error::InvalidArcFrame {
+                normal: [0.0; 3],
+                start_dir: [1.0, 0.0, 0.0],
+            },
+            "not parallel",
+        ),
+    ];
+    for (error, text) in cases {
+        assert!(error.to_string().contains(text), "{error}");
+    }
 }
