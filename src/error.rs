@@ -546,6 +546,59 @@ pub enum Error {
         /// The largest number accepted.
         max: usize,
     },
+    // Curve operations: split, transform, length parametrization, knot
+    // removal, 3D arcs and ellipses.
+    /// A split parameter is at an end of the curve's domain (or within
+    /// rounding of it, `4ε ×` the knot range for a spline): one of the two
+    /// pieces would be empty. Split strictly inside the domain.
+    SplitAtDomainEnd {
+        /// The parameter that was given.
+        t: f64,
+        /// The curve's domain; `t` must lie strictly inside it.
+        domain: (f64, f64),
+    },
+    /// A transformation has a NaN or infinite entry.
+    InvalidTransform,
+    /// A projective map sends a control point's weight to zero or below:
+    /// the curve meets (or crosses) the plane at infinity, so its image is
+    /// not a curve with positive weights.
+    ProjectiveWeightNotPositive {
+        /// Index of the control point.
+        index: usize,
+        /// The new weight `w·(h·P + h₀)` (the denominator row of the map
+        /// applied to the point, times the point's weight).
+        weight: f64,
+    },
+    /// An arc length `s` outside `[0, L]`, `L` the curve's length (or NaN).
+    LengthOutOfRange {
+        /// The length that was given.
+        s: f64,
+        /// The curve's length (its certified upper bound).
+        length: f64,
+    },
+    /// Dividing a curve into zero pieces.
+    ZeroPieces,
+    /// Knot removal was asked for a parameter that is not an interior knot
+    /// of the curve (the domain's ends cannot be removed).
+    NotAnInteriorKnot {
+        /// The parameter that was given.
+        t: f64,
+    },
+    /// A 3D arc's center has a NaN or infinite coordinate, or one beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    InvalidCenter3 {
+        /// The center given.
+        center: [f64; 3],
+    },
+    /// A 3D arc's normal is zero, NaN or infinite, or its start direction
+    /// is, or is parallel to the normal (nothing of it is left in the
+    /// arc's plane).
+    InvalidArcFrame {
+        /// The normal given.
+        normal: [f64; 3],
+        /// The start direction given.
+        start_dir: [f64; 3],
+    },
 }
 
 impl fmt::Display for Error {
@@ -852,6 +905,13 @@ impl fmt::Display for Error {
                 Num(domain.0),
                 Num(domain.1)
             ),
+            Error::SplitAtDomainEnd { t, domain } => write!(
+                f,
+                "cannot split at {}: at an end of the domain [{}, {}], one piece would be empty",
+                Num(t),
+                Num(domain.0),
+                Num(domain.1)
+            ),
             Error::SplitOutsideDomain {
                 direction,
                 t,
@@ -975,6 +1035,44 @@ impl fmt::Display for Error {
                 f,
                 "intersecting these pieces needs {coefficients} products of control points, \
                  more than the {max} accepted: the degrees are too high"
+            ),
+            Error::InvalidTransform => {
+                write!(f, "the transformation has a NaN or infinite entry")
+            }
+            Error::ProjectiveWeightNotPositive { index, weight } => write!(
+                f,
+                "the projective map gives control point {index} the weight {}: the curve \
+                 meets the plane at infinity",
+                Num(weight)
+            ),
+            Error::LengthOutOfRange { s, length } => write!(
+                f,
+                "arc length {} is outside [0, {}], the curve's length",
+                Num(s),
+                Num(length)
+            ),
+            Error::ZeroPieces => write!(f, "cannot divide a curve into zero pieces"),
+            Error::NotAnInteriorKnot { t } => {
+                write!(f, "{} is not an interior knot of the curve", Num(t))
+            }
+            Error::InvalidCenter3 { center } => write!(
+                f,
+                "arc center ({}, {}, {}) has a NaN, infinite or too large coordinate (limit {})",
+                Num(center[0]),
+                Num(center[1]),
+                Num(center[2]),
+                Num(MAX_COORDINATE)
+            ),
+            Error::InvalidArcFrame { normal, start_dir } => write!(
+                f,
+                "arc normal ({}, {}, {}) and start direction ({}, {}, {}) must be finite, \
+                 non-zero and not parallel",
+                Num(normal[0]),
+                Num(normal[1]),
+                Num(normal[2]),
+                Num(start_dir[0]),
+                Num(start_dir[1]),
+                Num(start_dir[2])
             ),
         }
     }

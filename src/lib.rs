@@ -145,7 +145,8 @@ pub mod testing;
 pub use aabb::Aabb;
 pub use curve::{
     ArcLength, BSpline, Bezier, BezierSpan, Curve, CurveProjector, CurveSample, Flattening,
-    MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier, RationalBezierSpan,
+    FrenetFrame, MAX_DERIVATIVE, MAX_SEGMENTS, NearestPoint, Nurbs, RationalBezier,
+    RationalBezierSpan,
 };
 pub use error::{Error, ParameterDirection};
 pub use limits::MAX_COORDINATE;

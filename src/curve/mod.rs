@@ -25,20 +25,27 @@ mod banded_solve;
 mod bezier;
 mod bspline;
 mod conic;
+mod conic_3d;
 mod curve_intersection;
 mod elevate;
 mod fit;
 mod flatten;
+mod frenet;
 mod gauss_remainder;
 mod homogeneous;
 mod interpolate;
 mod intersection_search;
+mod knot_removal;
 mod knots;
+mod length_parameter;
 mod nurbs;
 mod pieces;
 mod query;
 mod rational_bezier;
+mod split;
+mod transform;
 mod unit_scale;
+mod wrappers;
 pub use arc_length::ArcLength;
 pub use bezier::{Bezier, BezierSpan};
 pub use bspline::BSpline;
@@ -47,6 +54,7 @@ pub(crate) use curve_intersection::{check_spans, parameter as span_parameter, sp
 pub use elevate::{ELEVATION_ACCURACY, MAX_ELEVATED_DEGREE};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
+pub use frenet::FrenetFrame;
 pub use homogeneous::MAX_DERIVATIVE_ORDER;
 pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
 pub(crate) use interpolate::{
@@ -262,6 +270,77 @@ pub trait Curve<const D: usize> {
     /// [`nearest_point`](Curve::nearest_point).
     fn arc_length(&self, tolerance: f64) -> Result<ArcLength, Error> {
         arc_length::arc_length(self, tolerance)
+    }
+
+    /// The parameter `t` at which the arc length from the start of the
+    /// domain, `L(a, t) = ∫ₐᵗ |C′|`, is `s`, to `tolerance` (absolute):
+    /// `|L(a, t) − s| ≤ tolerance`.
+    ///
+    /// The spans are measured once by [`arc_length`](Curve::arc_length);
+    /// inside the span where `s` is reached, safeguarded Newton on
+    /// `L(t) − s` with `L′ = |C′|` (bisection when a step leaves the
+    /// bracket), each `L` measured on the exact de Casteljau piece. For
+    /// curves with [rational spans](Curve::rational_bezier_spans) the answer
+    /// is certified by the rigorous brackets of those lengths; for others it
+    /// rests on the quadrature's error estimate. See the
+    /// `curve::length_parameter` module docs.
+    ///
+    /// # Edge rules
+    /// `s = 0` gives `a` exactly; `s` from the estimated length `L` up to
+    /// `L + tolerance` gives `b` exactly. Where the curve stops (zero speed
+    /// over an interval) any parameter of the stop may be returned.
+    ///
+    /// ```
+    /// use revolve::{Curve, Nurbs};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// // On a circle of radius 2 the length s is reached at angle s/2.
+    /// let circle = Nurbs::circle(Point2::origin(), 2.0)?;
+    /// let t = circle.parameter_at_length(1.0, 1e-10)?;
+    /// let p = circle.eval(t);
+    /// assert!((p.y.atan2(p.x) - 0.5).abs() < 1e-9);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidTolerance`] unless `tolerance` is finite and
+    /// positive; [`Error::LengthOutOfRange`] for `s` NaN, negative or beyond
+    /// the length plus `tolerance`; [`Error::ToleranceTooSmall`] when the
+    /// lengths' brackets cannot be made narrow enough, and the errors of
+    /// [`arc_length`](Curve::arc_length) (each measurement gets a quarter
+    /// of the tolerance, so the smallest tolerance accepted is four times
+    /// `arc_length`'s).
+    fn parameter_at_length(&self, s: f64, tolerance: f64) -> Result<f64, Error> {
+        length_parameter::parameter_at_length(self, s, tolerance)
+    }
+
+    /// The `pieces + 1` parameters `a = t₀ < … < t_pieces = b` that divide
+    /// the curve into `pieces` pieces of equal length: `tᵢ` is
+    /// [`parameter_at_length`](Curve::parameter_at_length)`(i·L/pieces)`,
+    /// `L` the estimated length, so `|L(a, tᵢ) − i·L/pieces| ≤ tolerance`.
+    /// The ends are exactly `a` and `b`. Certified as
+    /// [`parameter_at_length`](Curve::parameter_at_length) is.
+    ///
+    /// ```
+    /// use revolve::{Bezier, Curve};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// // A straight segment traced at non-uniform speed (x = t²·3).
+    /// let c = Bezier::new(vec![Point2::new(0.0, 0.0), Point2::new(0.0, 0.0), Point2::new(3.0, 0.0)])?;
+    /// let ts = c.divide_by_length(3, 1e-10)?;
+    /// assert_eq!(ts.len(), 4);
+    /// assert_eq!((ts[0], ts[3]), (0.0, 1.0));
+    /// assert!((c.eval(ts[1]).x - 1.0).abs() <= 1e-10);
+    /// assert!((ts[1] - (1.0f64 / 3.0).sqrt()).abs() < 1e-9);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::ZeroPieces`] for `pieces = 0`; [`Error::TooManySegments`]
+    /// beyond [`MAX_SEGMENTS`]; those of
+    /// [`parameter_at_length`](Curve::parameter_at_length).
+    fn divide_by_length(&self, pieces: usize, tolerance: f64) -> Result<Vec<f64>, Error> {
+        length_parameter::divide_by_length(self, pieces, tolerance)
     }
 
     /// `segments + 1` samples at uniformly spaced parameters

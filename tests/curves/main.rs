@@ -12,6 +12,7 @@ mod constructions;
 mod elevate;
 mod intersections;
 mod nurbs;
+mod operations;
 mod properties;
 mod queries;
 mod rational_bezier;
