@@ -16,10 +16,11 @@ use revolve::{
 /// Seeds 0..6 000 (a few seconds).
 #[test]
 fn fuzz_constructions() {
-    fuzz("constructions", 0..6_000, |f| match f.below(4) {
+    fuzz("constructions", 0..8_000, |f| match f.below(5) {
         0 => curves_through_points(f),
         1 => surfaces_from_curves(f),
         2 => surface_operations(f),
+        3 => curve_operations(f),
         _ => intersections(f),
     });
 }
@@ -92,6 +93,87 @@ fn curves_through_points(f: &mut Fuzz) {
         BSplineSurface::interpolate(degrees, grid.clone())
     }) {
         surface_point_check(f, &s, "BSplineSurface::interpolate");
+    }
+}
+
+/// Split, transforms, the parameter at an arc length, knot removal, 3D
+/// arcs and ellipses, and the Frenet frame.
+fn curve_operations(f: &mut Fuzz) {
+    let Some(c) = nurbs_curve(f) else {
+        return;
+    };
+    let t = parameter(f, c.domain());
+    if let Some(Ok((left, right))) = f.call("Nurbs::split", || c.split(t)) {
+        // The halves meet where the curve is cut (unless a jump is there).
+        let (at_left, at_right) = (left.eval(left.domain().1), right.eval(right.domain().0));
+        f.check(
+            finite_point(&at_left) && finite_point(&at_right),
+            "Nurbs::split",
+            || format!("at {t}: {at_left:?} {at_right:?}"),
+        );
+    }
+    let m = Matrix4::from_fn(|i, j| match (i, j) {
+        (3, 3) => 1.0,
+        (3, _) => 0.0,
+        _ => f.number(),
+    });
+    let map = Affine3::from_matrix_unchecked(m);
+    if let Some(Ok(moved)) = f.call("Nurbs::try_transformed", || c.try_transformed(&map)) {
+        let p = moved.eval(t);
+        f.check(finite_point(&p), "Nurbs::try_transformed", || {
+            format!("{p:?}")
+        });
+    }
+    let length = if f.chance(4) {
+        f.number()
+    } else {
+        f.rng.unit()
+    };
+    let tolerance = if f.chance(4) { f.number() } else { 1e-6 };
+    if let Some(Ok(length_total)) = f.call("Curve::arc_length", || c.arc_length(tolerance)) {
+        let s = length * length_total.length;
+        if let Some(Ok(u)) = f.call("Curve::parameter_at_length", || {
+            c.parameter_at_length(s, tolerance)
+        }) {
+            let (a, b) = c.domain();
+            f.check((a..=b).contains(&u), "Curve::parameter_at_length", || {
+                format!("{u} outside ({a}, {b}) for s = {s}")
+            });
+        }
+    }
+    let times = f.below(3);
+    if let Some(Ok((fewer, removed))) =
+        f.call("Nurbs::remove_knot", || c.remove_knot(t, times, tolerance))
+    {
+        f.check(removed <= times, "Nurbs::remove_knot", || {
+            format!("{removed} removed of {times}")
+        });
+        let p = fewer.eval(parameter(f, fewer.domain()));
+        f.check(finite_point(&p), "Nurbs::remove_knot", || format!("{p:?}"));
+    }
+    if let Some(frame) = f
+        .call("Nurbs::frenet_frame", || c.frenet_frame(t))
+        .flatten()
+    {
+        let ok = frame.curvature.is_finite() && frame.torsion.is_finite();
+        f.check(ok, "Nurbs::frenet_frame", || format!("{frame:?}"));
+    }
+    let v = |f: &mut Fuzz| Vector3::new(f.number(), f.number(), f.number());
+    let (normal, start_dir) = (v(f), v(f));
+    let centre = Point3::from(v(f));
+    let (radius, a, b) = (f.number(), f.number(), f.number());
+    if let Some(Ok(arc)) = f.call("Nurbs::arc_3d", || {
+        Nurbs::arc_3d(centre, normal, start_dir, radius, a, b)
+    }) {
+        let p = arc.eval(parameter(f, arc.domain()));
+        f.check(finite_point(&p), "Nurbs::arc_3d", || format!("{p:?}"));
+    }
+    let radii = (f.number(), f.number());
+    if let Some(Ok(e)) = f.call("Nurbs::ellipse_arc", || {
+        Nurbs::ellipse_arc(Point2::new(centre.x, centre.y), radii, a, b)
+    }) {
+        let p = e.eval(parameter(f, e.domain()));
+        f.check(finite_point(&p), "Nurbs::ellipse_arc", || format!("{p:?}"));
     }
 }
 
