@@ -26,7 +26,7 @@ use crate::render::{Options, render};
 
 /// The bundled scenes in the base format (the showcase uses effects and
 /// random sampling, and is covered by the rendering tests instead).
-const BASE_SCENES: [&str; 7] = [
+const BASE_SCENES: [&str; 8] = [
     "basic",
     "vase",
     "wine_glass",
@@ -34,6 +34,7 @@ const BASE_SCENES: [&str; 7] = [
     "mesh",
     "nurbs",
     "teapot",
+    "constructions",
 ];
 
 fn scenes_dir() -> PathBuf {

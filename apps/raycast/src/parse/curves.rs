@@ -27,11 +27,11 @@
 use std::sync::Arc;
 
 use revolve::nalgebra::{Point2, Point3};
-use revolve::{BSpline, Bezier, Error, Flattening, Nurbs, Revolution};
+use revolve::{BSpline, Bezier, Error, Flattening, Nurbs, NurbsSurface, Revolution};
 
 use super::cursor::{Cursor, Result};
 use super::lexer::{Kind, Pos, Token};
-use crate::scene::{RevolutionBody, Shape, Tube};
+use crate::scene::{RevolutionBody, Shape, SurfaceBody, Tube};
 
 /// The curve keywords.
 pub(super) const CURVES: &[&str] = &["BezierCurve", "BsplineCurve", "NurbsCurve"];
@@ -313,4 +313,112 @@ fn check_extent(c: &Cursor<'_>, curve: Token<'_>, extent: f64) -> Result<()> {
             ),
         ))
     }
+}
+
+impl CurveBlock {
+    /// The curve as a 3D NURBS curve: a Bézier curve on the knots `0…0 1…1`,
+    /// the cubic B-spline on its uniform knots, a `NurbsCurve` as written.
+    fn nurbs_3d(&self) -> std::result::Result<Nurbs<3>, Error> {
+        let points = self.points();
+        let n = points.len();
+        match self.name {
+            "BezierCurve" => {
+                let degree = n.saturating_sub(1);
+                let knots = [vec![0.0; n], vec![1.0; n]].concat();
+                Nurbs::new(degree, knots, points, vec![1.0; n])
+            }
+            "BsplineCurve" => {
+                let knots = (0..n + 4).map(|i| i as f64 / (n + 3) as f64).collect();
+                Nurbs::new(3, knots, points, vec![1.0; n])
+            }
+            _ => Nurbs::new(self.degree, self.knots(), points, self.weights()),
+        }
+    }
+}
+
+/// The surfaces built from curves.
+pub(super) const CONSTRUCTED: &[&str] = &["RuledSurface", "ExtrudedSurface", "LoftedSurface"];
+
+/// `RuledSurface { curves CURVE CURVE }`, `ExtrudedSurface { curve CURVE
+/// direction x y z }` or `LoftedSurface { degree q  curves CURVE CURVE … }`
+/// (after its keyword): revolve's `NurbsSurface::ruled`, `::extrude` and
+/// `::loft` of the curves (each a `BezierCurve`, `BsplineCurve` or
+/// `NurbsCurve` block, in 3D).
+pub(super) fn constructed_surface(c: &mut Cursor<'_>, keyword: Token<'_>) -> Result<Shape> {
+    let name = CONSTRUCTED
+        .iter()
+        .copied()
+        .find(|&n| n == keyword.text)
+        .unwrap_or("RuledSurface");
+    let keys: &[&str] = match name {
+        "ExtrudedSurface" => &["curve", "direction"],
+        "LoftedSurface" => &["degree", "curves"],
+        _ => &["curves"],
+    };
+    let open = c.open(name)?;
+    let (mut curves, mut direction, mut degree) = (None, None, None);
+    while let Some(key) = c.key(name, open)? {
+        match key.text {
+            "curves" if name != "ExtrudedSurface" => {
+                c.field(&mut curves, key, name, |c, _| curve_blocks(c))?
+            }
+            "curve" if name == "ExtrudedSurface" => {
+                c.field(&mut curves, key, name, |c, _| Ok(vec![one_curve(c)?]))?
+            }
+            "direction" if name == "ExtrudedSurface" => {
+                c.field(&mut direction, key, name, |c, what| c.vector(what))?
+            }
+            "degree" if name == "LoftedSurface" => c.field(&mut degree, key, name, |c, what| {
+                Ok(c.whole(what, 1)?.0 as usize)
+            })?,
+            _ => return Err(c.unknown(key, name, keys)),
+        }
+    }
+    let blocks = c.required(curves, keys[0], name)?;
+    let mut sections = Vec::with_capacity(blocks.len());
+    for block in &blocks {
+        sections.push(block.nurbs_3d().map_err(|e| block.invalid(c, e))?);
+    }
+    let built = match name {
+        "ExtrudedSurface" => {
+            let direction = c.required(direction, "direction", name)?;
+            NurbsSurface::extrude(&sections[0], direction)
+        }
+        "LoftedSurface" => {
+            let degree = c.required(degree, "degree", name)?;
+            NurbsSurface::loft(&sections, degree)
+        }
+        _ if sections.len() != 2 => {
+            return Err(c.error(
+                keyword.pos,
+                format!(
+                    "a RuledSurface takes exactly two curves, got {}",
+                    sections.len()
+                ),
+            ));
+        }
+        _ => NurbsSurface::ruled(&sections[0], &sections[1]),
+    };
+    let surface = built.map_err(|e| c.error(keyword.pos, format!("invalid {name}: {e}")))?;
+    Ok(Shape::Surface(Arc::new(SurfaceBody::Nurbs(surface))))
+}
+
+/// One curve block (its keyword first).
+fn one_curve(c: &mut Cursor<'_>) -> Result<CurveBlock> {
+    match c.peek() {
+        Some(t) if CURVES.contains(&t.text) => {
+            c.bump();
+            curve_block(c, t)
+        }
+        _ => Err(c.expected("BezierCurve, BsplineCurve or NurbsCurve")),
+    }
+}
+
+/// One or more curve blocks.
+fn curve_blocks(c: &mut Cursor<'_>) -> Result<Vec<CurveBlock>> {
+    let mut blocks = vec![one_curve(c)?];
+    while c.peek().is_some_and(|t| CURVES.contains(&t.text)) {
+        blocks.push(one_curve(c)?);
+    }
+    Ok(blocks)
 }

@@ -21,6 +21,9 @@ pub(super) const OBJECTS: &[&str] = &[
     "BezierSurface",
     "BsplineSurface",
     "BezierPatches",
+    "RuledSurface",
+    "ExtrudedSurface",
+    "LoftedSurface",
 ];
 
 /// The block keywords of the format other than the objects

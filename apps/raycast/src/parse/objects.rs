@@ -18,7 +18,7 @@ use revolve::nalgebra::Matrix4;
 
 use super::counted::Counter;
 use super::cursor::{Cursor, Result};
-use super::curves::{CURVES, rev_surface, tube};
+use super::curves::{CONSTRUCTED, CURVES, constructed_surface, rev_surface, tube};
 use super::keywords::OBJECTS;
 use super::lexer::{Pos, Token};
 use super::resources::Resources;
@@ -178,6 +178,7 @@ fn object(
         name if CURVES.contains(&name) => tube(c, key)?,
         name if SURFACES.contains(&name) => surface(c, key)?,
         "BezierPatches" => bezier_patches(c, res)?,
+        name if CONSTRUCTED.contains(&name) => constructed_surface(c, key)?,
         name => match primitive(c, res, name, key.pos) {
             Some(shape) => shape?,
             None => return Err(unknown(c, key, context)),

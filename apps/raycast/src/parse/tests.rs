@@ -7,6 +7,7 @@ use super::{ParseError, parse_str};
 use crate::scene::{Object, Scene};
 pub(super) use crate::temp_dir::TempDir;
 
+mod constructed;
 mod errors_files;
 mod errors_syntax;
 mod errors_values;
