@@ -287,20 +287,29 @@ impl PatchTable {
             // direction leaving the edge lies in it (else a cone point).
             return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
         }
-        // Both orders vanish (a corner where two edges collapse): the
-        // normals at steps h = 10⁻³ … 10⁻⁸ (of the domain) inside along the
-        // direction, where the cross product is clearly resolved (sine of
-        // the angle between the partials ≥ 10⁻⁶); the last of them if they
+        // Both orders vanish (a corner where two edges collapse, or a pole
+        // on a tripled control point): the normals at steps h = 10⁻³ …
+        // 10⁻⁸ (of the domain, in half decades) inside along the direction,
+        // while the cross product is clearly resolved (sine of the angle
+        // between the partials ≥ 10⁻⁶, each partial 10³ times its rounding:
+        // near a pole the partial along the collapsing edge shrinks as h³
+        // and would soon be rounding alone); the last of them if they
         // converge (successive ones within 10⁻³), else no tangent plane.
+        let b = self.bounds;
+        let coordinates = b.min.coords.amax().max(b.max.coords.amax());
+        let rounding = 4.0 * f64::EPSILON * coordinates * self.degrees.0.max(self.degrees.1) as f64
+            / (du.1 - du.0).min(dv.1 - dv.0)
+            / unit;
         let mut last: Option<Unit<Vector3<f64>>> = None;
         let mut converged = false;
-        for k in 3..=8 {
-            let h = 10f64.powi(-k);
+        for k in 6..=16 {
+            let h = 10f64.powf(-0.5 * k as f64);
             let (su, sv) =
                 self.partials(u + h * dir_u * (du.1 - du.0), v + h * dir_v * (dv.1 - dv.0));
             let (su, sv) = (su / unit, sv / unit);
             let n = su.cross(&sv);
-            let resolved = n.norm() > 1e-6 * su.norm() * sv.norm();
+            let resolved = n.norm() > 1e-6 * su.norm() * sv.norm()
+                && su.norm().min(sv.norm()) > 1e3 * rounding;
             if !resolved {
                 break;
             }

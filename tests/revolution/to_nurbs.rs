@@ -134,18 +134,20 @@ fn the_same_points_and_normals() {
                     (p - q).norm()
                 );
                 let m = c.nurbs.normal(u, v);
+                // On the axis where the profile's first two derivatives
+                // vanish too (the glass starts and ends on tripled control
+                // points), the tensor surface's normal is the limit of
+                // normals sampled inside (resolved to a few 1e-6); the
+                // sphere's and the vase's poles come from exact orders.
+                let within = if c.name == "glass" && c.on_axis(u) {
+                    1e-5
+                } else {
+                    1e-9
+                };
                 match (n, m) {
-                    // On the axis where the profile's first two
-                    // derivatives vanish too (the glass starts and ends on
-                    // triple control points), the tensor surfaces'
-                    // collapsed-edge rule does not find the pole's normal
-                    // (a limitation of that rule, not of the conversion);
-                    // only there are the normals not compared. The
-                    // sphere's and the vase's poles are.
-                    _ if c.name == "glass" && c.on_axis(u) => {}
                     (Some(n), Some(m)) => {
                         assert!(
-                            (n.into_inner() - m.into_inner()).norm() < 1e-9,
+                            (n.into_inner() - m.into_inner()).norm() < within,
                             "{}: normal at u {u} θ {theta}: {n:?} vs {m:?}",
                             c.name
                         );
