@@ -169,26 +169,14 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
         .chain(&spans_b)
         .map(|s| max_abs_coordinate(s.curve.points()))
         .fold(0.0, f64::max);
-    let min = MIN_INTERSECTION_TOLERANCE * magnitude;
-    if tolerance < min {
-        return Err(Error::ToleranceTooSmall { tolerance, min });
-    }
-    for sa in &spans_a {
-        for sb in &spans_b {
-            let coefficients = sa.curve.points().len() * sb.curve.points().len();
-            if coefficients > MAX_SYSTEM {
-                return Err(Error::IntersectionTooLarge {
-                    coefficients,
-                    max: MAX_SYSTEM,
-                });
-            }
-        }
-    }
-    let scale = if magnitude > 0.0 {
-        power_of_two_near(magnitude)
-    } else {
-        1.0
+    let largest = |spans: &[RationalBezierSpan<2>]| {
+        spans
+            .iter()
+            .map(|s| s.curve.points().len())
+            .max()
+            .unwrap_or(0)
     };
+    let scale = working_scale(tolerance, magnitude, largest(&spans_a) * largest(&spans_b))?;
     let nets_a: Vec<Net<2>> = spans_a.iter().map(|s| span_net(&s.curve, scale)).collect();
     let nets_b: Vec<Net<2>> = spans_b.iter().map(|s| span_net(&s.curve, scale)).collect();
     let mut found: Vec<Found> = Vec::new();
@@ -316,5 +304,34 @@ fn boxes_meet(a: &RationalBezier<2>, b: &RationalBezier<2>, tolerance: f64) -> b
     (0..2).all(|k| {
         let pad = tolerance + 1e-12 * (alo[k].abs() + ahi[k].abs() + blo[k].abs() + bhi[k].abs());
         alo[k] <= bhi[k] + pad && blo[k] <= ahi[k] + pad
+    })
+}
+
+/// The checks every intersection search makes before it starts, and its
+/// working scale: the tolerance at least [`MIN_INTERSECTION_TOLERANCE`]
+/// times `magnitude` (the largest coordinate), else
+/// [`Error::ToleranceTooSmall`]; the largest pair of pieces' system
+/// (`coefficients`, products of control points) within [`MAX_SYSTEM`],
+/// else [`Error::IntersectionTooLarge`]. The scale is the power of two
+/// nearest `magnitude` (1 for zero), by which the nets are divided exactly.
+pub(crate) fn working_scale(
+    tolerance: f64,
+    magnitude: f64,
+    coefficients: usize,
+) -> Result<f64, Error> {
+    let min = MIN_INTERSECTION_TOLERANCE * magnitude;
+    if tolerance < min {
+        return Err(Error::ToleranceTooSmall { tolerance, min });
+    }
+    if coefficients > MAX_SYSTEM {
+        return Err(Error::IntersectionTooLarge {
+            coefficients,
+            max: MAX_SYSTEM,
+        });
+    }
+    Ok(if magnitude > 0.0 {
+        power_of_two_near(magnitude)
+    } else {
+        1.0
     })
 }

@@ -50,7 +50,9 @@ pub use arc_length::ArcLength;
 pub use bezier::{Bezier, BezierSpan};
 pub use bspline::BSpline;
 pub use curve_intersection::{CurveIntersection, MIN_INTERSECTION_TOLERANCE, intersect_curves};
-pub(crate) use curve_intersection::{check_spans, parameter as span_parameter, span_net};
+pub(crate) use curve_intersection::{
+    check_spans, parameter as span_parameter, span_net, working_scale,
+};
 pub use elevate::{ELEVATION_ACCURACY, MAX_ELEVATED_DEGREE};
 pub use flatten::Flattening;
 pub(crate) use flatten::{MIN_RELATIVE_TOLERANCE, flatten_controls, flatten_pieces};
@@ -60,7 +62,7 @@ pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
 pub(crate) use interpolate::{
     Interpolation, averaged_parameters, first_short_step, length, normalized_sums,
 };
-pub(crate) use intersection_search::{LocalRoot, MAX_SYSTEM, Net, PairOutcome, search_pair};
+pub(crate) use intersection_search::{LocalRoot, Net, PairOutcome, search_pair};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
 pub(crate) use query::check_query_point;

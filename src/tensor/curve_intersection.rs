@@ -4,8 +4,8 @@
 
 use super::patch_table::PatchTable;
 use crate::curve::{
-    Homogeneous, LocalRoot, MAX_SYSTEM, MIN_INTERSECTION_TOLERANCE, Net, PairOutcome, check_spans,
-    power_of_two_near, search_pair, span_net, span_parameter,
+    Homogeneous, LocalRoot, Net, PairOutcome, check_spans, power_of_two_near, search_pair,
+    span_net, span_parameter, working_scale,
 };
 use crate::{BSplineSurface, BezierSurface, Curve, Error, NurbsSurface};
 use nalgebra::Point3;
@@ -101,24 +101,12 @@ impl PatchTable {
                     .map(|(lo, hi)| lo.coords.amax().max(hi.coords.amax())),
             )
             .fold(0.0, f64::max);
-        let min = MIN_INTERSECTION_TOLERANCE * magnitude;
-        if tolerance < min {
-            return Err(Error::ToleranceTooSmall { tolerance, min });
-        }
-        for span in &spans {
-            let coefficients = span.curve.points().len() * (p + 1) * (q + 1);
-            if coefficients > MAX_SYSTEM {
-                return Err(Error::IntersectionTooLarge {
-                    coefficients,
-                    max: MAX_SYSTEM,
-                });
-            }
-        }
-        let scale = if magnitude > 0.0 {
-            power_of_two_near(magnitude)
-        } else {
-            1.0
-        };
+        let longest = spans
+            .iter()
+            .map(|s| s.curve.points().len())
+            .max()
+            .unwrap_or(0);
+        let scale = working_scale(tolerance, magnitude, longest * (p + 1) * (q + 1))?;
         let patch_nets: Vec<Net<3>> = self
             .patches
             .iter()
