@@ -48,7 +48,9 @@
 //! result, at its leaf whose pieces' centres are nearest. More than
 //! [`MAX_LEAVES`] leaves or [`MAX_BOXES`] boxes for one pair of pieces is
 //! an overlap: the pieces run within the tolerance of each other along a
-//! stretch (the hull of the leaves found is reported).
+//! stretch (the hull of the leaves found is reported). A caller may give
+//! a smaller budget of boxes, past which the search stops unfinished (the
+//! planar search then tries a direct proof that the pieces are one arc).
 //!
 //! # Rounding
 //! The control points are scaled by a power of two (exact) so that the
@@ -364,6 +366,8 @@ pub(crate) enum PairOutcome<const D: usize> {
     /// The pieces run together: the hull (local parameters) of the leaves
     /// found before the caps were reached.
     Overlap([(f64, f64); D]),
+    /// The search examined more boxes than its budget (below the caps).
+    Unfinished,
 }
 
 /// A box waiting to be examined, with the depth of each piece.
@@ -375,11 +379,13 @@ struct Item<const D: usize> {
 
 /// Every common point of the curve piece `a` (one parameter) and the piece
 /// `b` (`D − 1` parameters), both scaled as the module docs say;
-/// `tolerance` in the scaled units.
+/// `tolerance` in the scaled units. Past `budget` boxes (at most
+/// [`MAX_BOXES`]) the search stops [unfinished](PairOutcome::Unfinished).
 pub(crate) fn search_pair<const D: usize>(
     a: &Net<D>,
     b: &Net<D>,
     tolerance: f64,
+    budget: usize,
 ) -> PairOutcome<D> {
     let (ma, mb) = (a.magnitudes(), b.magnitudes());
     let mut stack = vec![Item {
@@ -394,6 +400,9 @@ pub(crate) fn search_pair<const D: usize>(
         if boxes > MAX_BOXES || leaves.len() > MAX_LEAVES {
             leaves.push(item.bx);
             return PairOutcome::Overlap(hull(&leaves));
+        }
+        if boxes > budget {
+            return PairOutcome::Unfinished;
         }
         let pa = Piece::new(a, &item.bx[..1], ma);
         let pb = Piece::new(b, &item.bx[1..], mb);

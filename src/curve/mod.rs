@@ -39,6 +39,7 @@ mod knot_removal;
 mod knots;
 mod length_parameter;
 mod nurbs;
+mod overlap;
 mod pieces;
 mod query;
 mod rational_bezier;
@@ -62,7 +63,7 @@ pub(crate) use homogeneous::{Homogeneous, power_of_two_near, quotient_rule};
 pub(crate) use interpolate::{
     Interpolation, averaged_parameters, first_short_step, length, normalized_sums,
 };
-pub(crate) use intersection_search::{LocalRoot, Net, PairOutcome, search_pair};
+pub(crate) use intersection_search::{LocalRoot, MAX_BOXES, Net, PairOutcome, search_pair};
 pub(crate) use knots::{boehm_insert, check_derivative_points, knot_to_insert, validate_knots};
 pub use nurbs::Nurbs;
 pub(crate) use query::check_query_point;

@@ -4,8 +4,8 @@
 
 use super::patch_table::PatchTable;
 use crate::curve::{
-    Homogeneous, LocalRoot, Net, PairOutcome, check_spans, power_of_two_near, search_pair,
-    span_net, span_parameter, working_scale,
+    Homogeneous, LocalRoot, MAX_BOXES, Net, PairOutcome, check_spans, power_of_two_near,
+    search_pair, span_net, span_parameter, working_scale,
 };
 use crate::{BSplineSurface, BezierSurface, Curve, Error, NurbsSurface};
 use nalgebra::Point3;
@@ -148,7 +148,7 @@ impl PatchTable {
                         (a + (b - a) * s).clamp(a, b)
                     }
                 };
-                match search_pair(&net, &patch_nets[k], tolerance / scale) {
+                match search_pair(&net, &patch_nets[k], tolerance / scale, MAX_BOXES) {
                     PairOutcome::Roots(roots) => {
                         for LocalRoot { x, certified, hull } in roots {
                             let (u, v) = (at(patch.u, x[1]), at(patch.v, x[2]));
@@ -180,7 +180,13 @@ impl PatchTable {
                             ));
                         }
                     }
-                    PairOutcome::Overlap(h) => {
+                    // The budget is the cap, so the search always finishes
+                    // (an unfinished one would be reported as the caps are).
+                    outcome @ (PairOutcome::Overlap(_) | PairOutcome::Unfinished) => {
+                        let h = match outcome {
+                            PairOutcome::Overlap(h) => h,
+                            _ => [(0.0, 1.0); 3],
+                        };
                         return Err(Error::CurveOnSurface {
                             t: (span_parameter(span, h[0].0), span_parameter(span, h[0].1)),
                             u: (at(patch.u, h[1].0), at(patch.u, h[1].1)),

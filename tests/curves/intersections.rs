@@ -664,3 +664,90 @@ proptest::proptest! {
         proptest::prop_assert!(hits.iter().all(|h| h.certified));
     }
 }
+
+/// Samples the reported stretch of `a` and checks that every sample lies
+/// within the tolerance of `b` (an independent check by nearest points).
+fn assert_stretch_within(a: &impl Curve<2>, b: &impl Curve<2>, range: (f64, f64), within: f64) {
+    let on_b = revolve::curve::CurveProjector::new(b).unwrap();
+    assert!(range.0 < range.1, "{range:?}");
+    for k in 0..=64 {
+        let t = range.0 + (range.1 - range.0) * k as f64 / 64.0;
+        let near = on_b.nearest(&a.eval(t)).unwrap();
+        assert!(
+            near.distance <= within,
+            "a({t}) is {} from b",
+            near.distance
+        );
+    }
+}
+
+#[test]
+fn copies_of_a_curve_are_an_overlap_found_early() {
+    // The same arc in other forms: knots inserted, reversed, moved by a
+    // third of the tolerance, raised in degree, a part of a circle. Each is
+    // an overlap; the reported stretch lies within the tolerance of the
+    // other curve, sample by sample.
+    let pts: Vec<Point2<f64>> = (0..12)
+        .map(|i| Point2::new(i as f64 * 0.3, ((i * 7) % 5) as f64 * 0.2))
+        .collect();
+    let spline = BSpline::clamped(3, pts.clone()).unwrap();
+    let refined = spline
+        .insert_knot(0.37, 1)
+        .unwrap()
+        .insert_knot(0.81, 2)
+        .unwrap();
+    let moved = BSpline::clamped(
+        3,
+        pts.iter()
+            .map(|p| p + Vector2::new(0.0, TOL / 3.0))
+            .collect(),
+    )
+    .unwrap();
+    let raised = spline.elevate_degree(1).unwrap();
+    type Case = (&'static str, Box<dyn Curve<2>>, Box<dyn Curve<2>>);
+    let cases: Vec<Case> = vec![
+        (
+            "knots inserted",
+            Box::new(spline.clone()),
+            Box::new(refined),
+        ),
+        (
+            "reversed",
+            Box::new(spline.clone()),
+            Box::new(spline.reversed()),
+        ),
+        ("moved", Box::new(spline.clone()), Box::new(moved)),
+        ("raised", Box::new(spline.clone()), Box::new(raised)),
+        (
+            "arc of the circle",
+            Box::new(Nurbs::circle(Point2::new(0.5, -0.25), 2.0).unwrap()),
+            Box::new(Nurbs::arc(Point2::new(0.5, -0.25), 2.0, 0.5, 2.0).unwrap()),
+        ),
+    ];
+    for (name, a, b) in &cases {
+        let started = Instant::now();
+        let err = intersect_curves(a, b, TOL).unwrap_err();
+        let elapsed = started.elapsed().as_secs_f64();
+        let Error::CurvesOverlap { a: ra, b: rb } = err else {
+            panic!("{name}: {err}");
+        };
+        assert_stretch_within(a, b, ra, TOL);
+        assert_stretch_within(b, a, rb, TOL);
+        eprintln!("{name}: overlap {ra:?} / {rb:?} in {:.2} ms", 1e3 * elapsed);
+        assert!(elapsed < 10.0, "{name}: {elapsed} s");
+    }
+}
+
+#[test]
+fn concentric_circles_apart_by_twice_the_tolerance_do_not_overlap() {
+    // A gap of 2·TOL everywhere: no common point and no overlap; a gap of
+    // TOL/3: an overlap.
+    let c = Point2::new(0.25, 0.5);
+    let inner = Nurbs::circle(c, 1.0).unwrap();
+    let outer = Nurbs::circle(c, 1.0 + 2.0 * TOL).unwrap();
+    let hits = intersect_curves(&inner, &outer, TOL).unwrap();
+    assert!(hits.is_empty(), "{hits:?}");
+    let close = Nurbs::circle(c, 1.0 + TOL / 3.0).unwrap();
+    let err = intersect_curves(&inner, &close, TOL).unwrap_err();
+    assert!(matches!(err, Error::CurvesOverlap { .. }), "{err}");
+}
