@@ -599,6 +599,23 @@ pub enum Error {
         /// The start direction given.
         start_dir: [f64; 3],
     },
+    /// Interpolation at given parameters got a different number of
+    /// parameters than of data points.
+    ParameterCount {
+        /// The number of data points.
+        expected: usize,
+        /// The number of parameters given.
+        found: usize,
+    },
+    /// A given interpolation parameter is NaN, infinite or beyond
+    /// [`MAX_COORDINATE`], or is not above the previous one by at least
+    /// `16ε` of the parameters' whole range.
+    InvalidParameter {
+        /// Index of the parameter.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -1073,6 +1090,17 @@ impl fmt::Display for Error {
                 Num(start_dir[0]),
                 Num(start_dir[1]),
                 Num(start_dir[2])
+            ),
+            Error::ParameterCount { expected, found } => write!(
+                f,
+                "interpolation needs one parameter per data point ({expected}), got {found}"
+            ),
+            Error::InvalidParameter { index, value } => write!(
+                f,
+                "interpolation parameter {index} is {}: parameters must be finite, within {} \
+                 and increasing by at least 16ε of their range",
+                Num(value),
+                Num(MAX_COORDINATE)
             ),
         }
     }

@@ -20,7 +20,7 @@
 
 use super::banded_solve::BandedMatrix;
 use super::validate_points;
-use crate::{BSpline, Error};
+use crate::{BSpline, Error, MAX_COORDINATE};
 use nalgebra::{Point, SVector};
 
 /// The smallest step between consecutive parameters (`16ε`, the
@@ -147,18 +147,20 @@ pub(crate) fn averaged_parameters<'a, const D: usize>(
 }
 
 /// Knots by averaging (Piegl & Tiller eq. 9.8) for `N = params.len()`
-/// parameters from 0 to 1 and degree `p ≥ 1`, `p < N`: `p + 1` zeros, the
-/// means `t_{j+p} = (ū_j + … + ū_{j+p−1})/p` for `j = 1 … N − p − 1`, and
-/// `p + 1` ones (`N + p + 1` knots).
+/// increasing parameters and degree `p ≥ 1`, `p < N`: `p + 1` copies of
+/// the first parameter, the means `t_{j+p} = (ū_j + … + ū_{j+p−1})/p` for
+/// `j = 1 … N − p − 1`, and `p + 1` copies of the last (`N + p + 1`
+/// knots).
 pub(crate) fn averaged_knots(degree: usize, params: &[f64]) -> Vec<f64> {
     let (p, n) = (degree, params.len());
+    let (first, last) = (params[0], params[n - 1]);
     let mut knots = Vec::with_capacity(n + p + 1);
-    knots.extend(std::iter::repeat_n(0.0, p + 1));
+    knots.extend(std::iter::repeat_n(first, p + 1));
     for j in 1..n - p {
         let mean = params[j..j + p].iter().sum::<f64>() / p as f64;
-        knots.push(mean.clamp(0.0, 1.0));
+        knots.push(mean.clamp(first, last));
     }
-    knots.extend(std::iter::repeat_n(1.0, p + 1));
+    knots.extend(std::iter::repeat_n(last, p + 1));
     knots
 }
 
@@ -364,6 +366,79 @@ impl<const D: usize> BSpline<D> {
         validate_points(points)?;
         let params = centripetal_parameters(points)?;
         interpolate_at(degree, points, &params)
+    }
+
+    /// The clamped B-spline of degree `degree` through every point at the
+    /// given parameters, `C(parameters[k]) = points[k]`, with knots by
+    /// averaging the parameters (Piegl & Tiller eq. 9.8) and the domain
+    /// `[parameters[0], parameters[N − 1]]`.
+    ///
+    /// Use it for chord-length, uniform or your own parameters. Since the
+    /// knots by averaging satisfy the Schoenberg–Whitney condition, the
+    /// interpolant is the only spline of that degree and those knots
+    /// through the points: points sampled from such a spline at these
+    /// parameters give that spline back (to rounding).
+    ///
+    /// ```
+    /// use revolve::{BSpline, Curve};
+    /// use revolve::nalgebra::Point2;
+    ///
+    /// // A cubic whose knots are the averages of (0, 1, 2, 3, 4, 5):
+    /// // 0 0 0 0 2 3 5 5 5 5.
+    /// let knots = vec![0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 5.0, 5.0, 5.0, 5.0];
+    /// let control: Vec<Point2<f64>> = [(0.0, 0.0), (1.0, 3.0), (2.0, -1.0), (4.0, 2.0),
+    ///     (5.0, 0.5), (6.0, 1.0)].iter().map(|&(x, y)| Point2::new(x, y)).collect();
+    /// let spline = BSpline::new(3, knots, control)?;
+    /// let params = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+    /// let samples: Vec<Point2<f64>> = params.iter().map(|&t| spline.eval(t)).collect();
+    /// let again = BSpline::interpolate_with_parameters(3, &samples, &params)?;
+    /// assert_eq!(again.knots(), spline.knots());
+    /// for (p, q) in again.points().iter().zip(spline.points()) {
+    ///     assert!((p - q).norm() < 1e-13);
+    /// }
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::ZeroDegree`]; [`Error::TooFewPoints`];
+    /// [`Error::NonFinitePoint`] or [`Error::CoordinateTooLarge`] for a
+    /// data point; [`Error::ParameterCount`] unless there is one parameter
+    /// per point; [`Error::InvalidParameter`] for a parameter that is not
+    /// finite, beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), or not
+    /// above the previous one by `16ε` of the range;
+    /// [`Error::SingularSystem`] (rounding only); then the errors of
+    /// [`BSpline::new`] for the result.
+    pub fn interpolate_with_parameters(
+        degree: usize,
+        points: &[Point<f64, D>],
+        parameters: &[f64],
+    ) -> Result<BSpline<D>, Error> {
+        check_degree_and_count(degree, points.len())?;
+        validate_points(points)?;
+        if parameters.len() != points.len() {
+            return Err(Error::ParameterCount {
+                expected: points.len(),
+                found: parameters.len(),
+            });
+        }
+        let bad = |index: usize| Error::InvalidParameter {
+            index,
+            value: parameters[index],
+        };
+        if let Some(index) = parameters
+            .iter()
+            .position(|t| !(t.is_finite() && t.abs() <= MAX_COORDINATE))
+        {
+            return Err(bad(index));
+        }
+        let range = parameters[parameters.len() - 1] - parameters[0];
+        if let Some(index) = (1..parameters.len()).find(|&k| {
+            let step = parameters[k] - parameters[k - 1];
+            !(range > 0.0 && step >= MIN_PARAMETER_STEP * range)
+        }) {
+            return Err(bad(index));
+        }
+        interpolate_at(degree, points, parameters)
     }
 }
 

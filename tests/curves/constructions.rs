@@ -56,14 +56,16 @@ fn centripetal<const D: usize>(points: &[Point<f64, D>]) -> Vec<f64> {
     params
 }
 
-/// Knots by averaging (Piegl & Tiller eq. 9.8).
+/// Knots by averaging (Piegl & Tiller eq. 9.8), for parameters on any
+/// range: `p + 1` copies of each end, the means of `p` consecutive
+/// interior parameters between.
 fn averaged_knots(p: usize, params: &[f64]) -> Vec<f64> {
     let n = params.len();
-    let mut knots = vec![0.0; p + 1];
+    let mut knots = vec![params[0]; p + 1];
     for j in 1..n - p {
         knots.push(params[j..j + p].iter().sum::<f64>() / p as f64);
     }
-    knots.extend(vec![1.0; p + 1]);
+    knots.extend(vec![params[n - 1]; p + 1]);
     knots
 }
 
@@ -257,6 +259,104 @@ fn interpolation_is_invariant_under_similarities() {
 
 /// `n` points on the unit circle over three quarters of a turn, equally
 /// spaced in angle.
+/// Random increasing parameters from `start`, steps in `[0.2, 2]`.
+fn random_parameters(rng: &mut Rng, count: usize, start: f64) -> Vec<f64> {
+    let mut t = start;
+    (0..count)
+        .map(|k| {
+            if k > 0 {
+                t += rng.range(0.2, 2.0);
+            }
+            t
+        })
+        .collect()
+}
+
+/// Samples a random spline of degree `p` whose knots are those by
+/// averaging of `params`, at `params`, and interpolates the samples at
+/// them: the spline comes back (the interpolant is unique in its space).
+/// Returns the largest control-point difference over the spline's size.
+fn reproduction_error(rng: &mut Rng, p: usize, params: &[f64]) -> f64 {
+    let spline = BSpline::new(
+        p,
+        averaged_knots(p, params),
+        random_points::<3>(rng, params.len()),
+    )
+    .unwrap();
+    let samples: Vec<Point3<f64>> = params.iter().map(|&t| spline.eval(t)).collect();
+    let again = BSpline::interpolate_with_parameters(p, &samples, params).unwrap();
+    assert_eq!(again.domain(), (params[0], params[params.len() - 1]));
+    for (a, b) in again.knots().iter().zip(spline.knots()) {
+        assert!((a - b).abs() <= 1e-14 * (1.0 + b.abs()), "{a} vs {b}");
+    }
+    again
+        .points()
+        .iter()
+        .zip(spline.points())
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max)
+        / size(spline.points())
+}
+
+#[test]
+fn interpolation_at_a_splines_parameters_reproduces_the_spline() {
+    let mut rng = Rng(0x5eed_2901);
+    let mut worst = 0.0_f64;
+    for p in 1..=7 {
+        for case in 0..40 {
+            let count = p + 1 + case % 17;
+            let start = rng.range(-50.0, 50.0);
+            let params = random_parameters(&mut rng, count, start);
+            let error = reproduction_error(&mut rng, p, &params);
+            assert!(error < 1e-11, "degree {p}, case {case}: {error:e}");
+            worst = worst.max(error);
+        }
+    }
+    eprintln!("largest control-point difference over size: {worst:e}");
+}
+
+#[test]
+fn interpolation_at_given_parameters_refuses_bad_ones() {
+    let pts: Vec<Point2<f64>> = (0..5)
+        .map(|i| Point2::new(i as f64, (i * i) as f64))
+        .collect();
+    let interp = |params: &[f64]| BSpline::interpolate_with_parameters(2, &pts, params);
+    assert_eq!(
+        interp(&[0.0, 1.0, 2.0]),
+        Err(Error::ParameterCount {
+            expected: 5,
+            found: 3
+        })
+    );
+    let invalid = |params: &[f64], index: usize| match interp(params) {
+        Err(Error::InvalidParameter { index: i, value }) => {
+            assert_eq!(i, index, "{params:?}");
+            assert_eq!(value.to_bits(), params[index].to_bits(), "{params:?}");
+        }
+        other => panic!("{params:?}: {other:?}"),
+    };
+    invalid(&[0.0, 1.0, f64::NAN, 3.0, 4.0], 2);
+    invalid(&[0.0, 1.0, 2.0, 3.0, f64::INFINITY], 4);
+    invalid(&[0.0, 1.0, 2.0, 3.0, 2.0 * MAX_COORDINATE], 4);
+    invalid(&[0.0, 1.0, 1.0, 3.0, 4.0], 2);
+    invalid(&[0.0, 2.0, 1.0, 3.0, 4.0], 2);
+    invalid(&[0.0, 1.0, 1.0 + 1e-15, 3.0, 4.0], 2);
+    // The data are checked first, then the parameters.
+    assert_eq!(
+        BSpline::interpolate_with_parameters(0, &pts, &[0.0; 5]),
+        Err(Error::ZeroDegree)
+    );
+    let text = Error::InvalidParameter {
+        index: 2,
+        value: 1.0,
+    }
+    .to_string();
+    assert!(
+        text.contains("parameter 2") && text.contains("increasing"),
+        "{text}"
+    );
+}
+
 fn arc_points(n: usize) -> Vec<Point2<f64>> {
     (0..n)
         .map(|k| {
@@ -555,6 +655,21 @@ proptest! {
         for (q, u) in points.iter().zip(centripetal(&points)) {
             prop_assert!((curve.eval(u) - q).norm() <= tol);
         }
+    }
+
+    /// Samples of a random spline at parameters whose averages are its
+    /// knots give the spline back, for degrees 1–7.
+    #[test]
+    fn interpolation_reproduces_splines_sampled_at_their_parameters(
+        p in 1usize..=7,
+        extra in 0usize..20,
+        seed in any::<u64>(),
+        start in -1e3f64..1e3,
+    ) {
+        let mut rng = Rng(seed | 1);
+        let params = random_parameters(&mut rng, p + 1 + extra, start);
+        let error = reproduction_error(&mut rng, p, &params);
+        prop_assert!(error < 1e-11, "{error:e}");
     }
 
     /// The fit keeps its ends and meets the least-squares conditions.

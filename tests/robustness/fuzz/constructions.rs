@@ -7,10 +7,12 @@
 //! intersection point lies on both curves to within the size).
 
 use super::{Fuzz, control_grid, finite_point, fuzz, parameter};
-use revolve::curve::intersect_curves;
-use revolve::nalgebra::{Affine3, Matrix4, Point2, Point3, Vector3};
+use revolve::curve::{CurveProjector, intersect_curves};
+use revolve::nalgebra::{
+    Affine2, Affine3, Matrix4, Point2, Point3, Translation2, Vector2, Vector3,
+};
 use revolve::{
-    BSpline, BSplineSurface, Curve, Intersect, Nurbs, NurbsSurface, Revolution, Surface,
+    BSpline, BSplineSurface, Curve, Error, Intersect, Nurbs, NurbsSurface, Revolution, Surface,
 };
 
 /// Seeds 0..6 000 (a few seconds).
@@ -77,6 +79,35 @@ fn curves_through_points(f: &mut Fuzz) {
                     points[n - 1]
                 )
             },
+        );
+    }
+    // Parameters: mostly increasing steps, sometimes any numbers.
+    let mut t = f.number();
+    let params: Vec<f64> = (0..n + f.below(2))
+        .map(|_| {
+            if f.chance(8) {
+                t = f.number();
+            } else {
+                t += f.number().abs();
+            }
+            t
+        })
+        .collect();
+    if let Some(Ok(c)) = f.call("BSpline::interpolate_with_parameters", || {
+        BSpline::interpolate_with_parameters(degree, &points, &params)
+    }) {
+        let k = f.below(n);
+        let (p, q) = (c.eval(params[k]), points[k]);
+        let size = points
+            .iter()
+            .fold(0.0_f64, |m, p| m.max(p.coords.amax()))
+            .max(f64::MIN_POSITIVE);
+        // Within the data's size times the conditioning a random parameter
+        // spacing allows; the check is for NaN and gross misses.
+        f.check(
+            finite_point(&p) && (p - q).amax() <= 1e-3 * size,
+            "BSpline::interpolate_with_parameters",
+            || format!("{p:?} at {} for {q:?}", params[k]),
         );
     }
     let control = f.below(n + 3);
@@ -282,8 +313,43 @@ fn intersections(f: &mut Fuzz) {
     let (Some(a), Some(b)) = (two(f), two(f)) else {
         return;
     };
+    // Sometimes the second curve is the first, moved or refined, so that
+    // the overlap proof is exercised.
+    let b = match f.below(4) {
+        0 => a.reversed(),
+        1 => {
+            let shift = Vector2::new(f.number(), f.number()) * 1e-12;
+            let moved = Affine2::from_matrix_unchecked(Translation2::from(shift).to_homogeneous());
+            a.try_transformed(&moved).unwrap_or(b)
+        }
+        _ => b,
+    };
     let tolerance = if f.chance(4) { f.number() } else { 1e-9 };
-    if let Some(Ok(found)) = f.call("intersect_curves", || intersect_curves(&a, &b, tolerance)) {
+    let found = f.call("intersect_curves", || intersect_curves(&a, &b, tolerance));
+    if let Some(Err(Error::CurvesOverlap { a: ra, b: rb })) = found {
+        // The stretch reported runs within the tolerance (and rounding).
+        let inside = |r: (f64, f64), (lo, hi): (f64, f64)| lo <= r.0 && r.0 <= r.1 && r.1 <= hi;
+        f.check(
+            inside(ra, a.domain()) && inside(rb, b.domain()),
+            "intersect_curves",
+            || format!("overlap {ra:?} / {rb:?} outside the domains"),
+        );
+        let mid = a.eval(0.5 * (ra.0 + ra.1));
+        if let Ok(near) = CurveProjector::new(&b).and_then(|p| p.nearest(&mid)) {
+            let size = mid.coords.amax().max(near.point.coords.amax());
+            f.check(
+                near.distance <= 4.0 * tolerance + 1e-9 * size,
+                "intersect_curves",
+                || {
+                    format!(
+                        "overlap {ra:?}: a's middle {mid:?} is {} from b",
+                        near.distance
+                    )
+                },
+            );
+        }
+    }
+    if let Some(Ok(found)) = found {
         let size = [a.bounds(), b.bounds()]
             .iter()
             .fold(0.0_f64, |m, (lo, hi)| {
