@@ -17,7 +17,7 @@ pub const MIN_INTERSECTION_TOLERANCE: f64 = 1e-10;
 
 /// Boxes a pair of spans may take before the overlap certificate is tried
 /// (a transversal pair takes far fewer; two copies of a curve far more).
-const FIRST_BUDGET: usize = 1 << 12;
+const FIRST_BUDGET: usize = 1 << 10;
 
 /// Results closer than this in both parameters (relative to each span's
 /// width) are one intersection found twice (at a span join, or by two
@@ -119,13 +119,13 @@ pub struct CurveIntersection {
 /// another uncertified cluster, is merged into it. A curve of degree 0 (a
 /// point) is never certified. Work is bounded: at most 2¹⁸ boxes and 2¹³
 /// undecided leaves per pair of spans, boxes at most 48 halvings deep.
-/// A pair of spans still undecided after 2¹² boxes is tested for being one
+/// A pair of spans still undecided after 2¹⁰ boxes is tested for being one
 /// arc: when their control points, restricted to the stretch between the
 /// span ends that lie on the other span and compared after a change of
 /// parameter, prove every point of each within `tolerance` of the other,
 /// the overlap is reported at once (copies of a curve, with other knots,
 /// reversed, raised in degree or moved by less than half the tolerance,
-/// take a few milliseconds, where the caps take 0.1–0.8 s).
+/// take under a millisecond where the caps take 0.1–0.8 s).
 ///
 /// ```
 /// use revolve::curve::intersect_curves;
