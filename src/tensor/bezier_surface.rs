@@ -39,12 +39,19 @@ use nalgebra::{Point3, Unit, Vector3};
 ///   leaving the edge lies in it (the net's first differences off the edge
 ///   are all perpendicular to it, within `10⁻⁷`, as on the teapot's lid,
 ///   whose second row is level with its apex); otherwise the edge point is a
-///   cone point and the normal is `None`. Where `N₁` vanishes
-///   too (two collapsed edges meeting at a corner), the normals at steps
-///   `h = 10⁻³, 10⁻⁴, …, 10⁻⁸` of the domain inside along `d` are computed
-///   while the partials' cross product is resolved (sine of their angle
-///   `≥ 10⁻⁶`); if successive ones converge (within `10⁻³`) the last is the
-///   normal. `None` where none of these gives a normal: no tangent plane.
+///   cone point and the normal is `None`. Where `N₁` vanishes too on a
+///   collapsed edge whose next rows collapse onto the same point `P` (a
+///   pole on a tripled control point), the first row `k` that leaves `P`
+///   gives the limit exactly: `S − P ∝ sᵏ·F(t)` with
+///   `F(t) = Σⱼ Bⱼ(t)·wₖⱼ(Pₖⱼ − P)`, so the normal is along `±F × F′`; it
+///   is the tangent plane only if every `wₖⱼ(Pₖⱼ − P)` along the edge is
+///   perpendicular to it (else a cone point, `None`). Otherwise (two
+///   collapsed edges meeting at a corner), the normals at steps
+///   `h = 10⁻³, 10⁻³·⁵, …, 10⁻⁸` of the domain inside along `d` are
+///   computed while the partials' cross product is resolved (sine of their
+///   angle `≥ 10⁻⁶`, each partial above its rounding); if successive ones
+///   converge (within `10⁻³`) the last is the normal. `None` where none of
+///   these gives a normal: no tangent plane.
 /// - [`bound_patch`](crate::PatchBounds::bound_patch) is the box of the
 ///   sub-patch's control net (de Casteljau subdivision; convex hull
 ///   property), padded for rounding.

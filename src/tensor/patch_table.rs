@@ -287,8 +287,14 @@ impl PatchTable {
             // direction leaving the edge lies in it (else a cone point).
             return self.edge_is_flat(u, v, su, sv, &n1).then_some(n1);
         }
-        // Both orders vanish (a corner where two edges collapse, or a pole
-        // on a tripled control point): the normals at steps h = 10⁻³ …
+        // Both orders vanish. On a collapsed edge whose next rows of
+        // control points collapse onto the same point (a pole on a tripled
+        // control point), the limit comes from the first row that leaves.
+        if let Some(limit) = self.collapsed_edge_limit(u, v) {
+            return limit;
+        }
+        // Otherwise (a corner where two edges collapse, or an edge whose
+        // limit that row does not resolve): the normals at steps h = 10⁻³ …
         // 10⁻⁸ (of the domain, in half decades) inside along the direction,
         // while the cross product is clearly resolved (sine of the angle
         // between the partials ≥ 10⁻⁶, each partial 10³ times its rounding:
@@ -322,6 +328,95 @@ impl PatchTable {
             last = Some(n);
         }
         if converged { last } else { None }
+    }
+
+    /// The normal's limit at `(u, v)` on an edge of the domain that
+    /// collapses to one point `P`, where the rows of control points after
+    /// it collapse onto `P` too, up to row `k` (the first that leaves `P`;
+    /// across the edge, rows numbered from it). With `s` the patch
+    /// parameter across the edge and `t` along it, numerator and weight
+    /// give `S − P = C(p, k)·sᵏ·F(t)/W₀(t) + O(sᵏ⁺¹)` with
+    /// `F(t) = Σⱼ Bⱼ(t)·wₖⱼ·(Pₖⱼ − P)`, so that
+    /// `S_s × S_t ∝ s²ᵏ⁻¹·F × F′` and the limit is along `±F(t) × F′(t)`
+    /// (the sign from the edge's side and parameter). It is a tangent
+    /// plane only if every `wₖⱼ(Pₖⱼ − P)` of every patch along the edge is
+    /// perpendicular to it (within `10⁻⁷`): `Some(None)` otherwise (a
+    /// cone point). `None` (not decided here) off a collapsed edge, when
+    /// no row leaves `P`, or when `F × F′` is not resolved at `t`.
+    fn collapsed_edge_limit(&self, u: f64, v: f64) -> Option<Option<Unit<Vector3<f64>>>> {
+        let [du, dv] = self.domain();
+        let (p, q) = self.degrees;
+        let cols = q + 1;
+        let (nu, nv) = (self.u_breaks.len() - 1, self.v_breaks.len() - 1);
+        let (patch, (s, t)) = self.locate(u, v);
+        let (a, b) = (locate(&self.u_breaks, u), locate(&self.v_breaks, v));
+        let same = 1e-12 * self.extent.max(f64::MIN_POSITIVE);
+        let point = |h: &Homogeneous<3>| h.wp / h.w;
+        // (edge across u?, at the domain's start?)
+        let edges = [
+            (true, u == du.0, u == du.0 || u == du.1),
+            (false, v == dv.0, v == dv.0 || v == dv.1),
+        ];
+        for (across_u, at_start, on_edge) in edges {
+            if !on_edge {
+                continue;
+            }
+            let (across, along) = if across_u { (p, q) } else { (q, p) };
+            // The control point `(i, j)`: `i` rows from the edge, `j` along it.
+            let at = |net: &[Homogeneous<3>], i: usize, j: usize| {
+                let i = if at_start { i } else { across - i };
+                if across_u {
+                    net[i * cols + j]
+                } else {
+                    net[j * cols + i]
+                }
+            };
+            let net = &patch.net;
+            let pole = point(&at(net, 0, 0));
+            let off = |net: &[Homogeneous<3>], i: usize| {
+                (0..=along).any(|j| (point(&at(net, i, j)) - pole).amax() > same)
+            };
+            if off(net, 0) {
+                continue;
+            }
+            let Some(k) = (1..=across).find(|&i| off(net, i)) else {
+                continue;
+            };
+            let row: Vec<Vector3<f64>> = (0..=along)
+                .map(|j| {
+                    let h = at(net, k, j);
+                    h.wp - pole * h.w
+                })
+                .collect();
+            let along_t = if across_u { t } else { s };
+            let (f, df) = bernstein_with_derivative(&row, along_t);
+            let n = f.cross(&df);
+            if !(n.norm() > 1e-7 * f.norm() * df.norm()) {
+                continue;
+            }
+            // S_u × S_v: + at u's start, − at u's end; the other way on v.
+            let sign = if across_u == at_start { 1.0 } else { -1.0 };
+            let n = unit_direction(n * sign)?;
+            // Every patch along the edge: its row k (when rows before it
+            // collapse too) perpendicular to n.
+            let mut flat = true;
+            let others: Vec<&Patch> = if across_u {
+                (0..nv).map(|bb| &self.patches[a * nv + bb]).collect()
+            } else {
+                (0..nu).map(|aa| &self.patches[aa * nv + b]).collect()
+            };
+            for other in others {
+                for i in 1..=k {
+                    for j in 0..=along {
+                        let h = at(&other.net, i, j);
+                        let d = h.wp - pole * h.w;
+                        flat &= n.dot(&d).abs() <= 1e-7 * d.norm();
+                    }
+                }
+            }
+            return Some(flat.then_some(n));
+        }
+        None
     }
 
     /// At a point `(u, v)` on an edge of the domain where that edge is
@@ -550,4 +645,21 @@ pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// `F(t)` and `F′(t)` of the polynomial with Bernstein coefficients `c`
+/// (de Casteljau; `F′ = n·(difference of the last two points)`).
+fn bernstein_with_derivative(c: &[Vector3<f64>], t: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let mut work = c.to_vec();
+    let n = work.len() - 1;
+    if n == 0 {
+        return (work[0], Vector3::zeros());
+    }
+    for level in 0..n - 1 {
+        for j in 0..n - level {
+            work[j] = work[j] * (1.0 - t) + work[j + 1] * t;
+        }
+    }
+    let d = (work[1] - work[0]) * n as f64;
+    (work[0] * (1.0 - t) + work[1] * t, d)
 }

@@ -9,11 +9,11 @@ use revolve_testkit as common;
 use common::tensor_shapes::sphere_octant;
 
 use common::random_tensors::{Xorshift64Star as Rng, clamped_knots};
-use revolve::nalgebra::{Point3, Point4, Vector3};
+use revolve::nalgebra::{Point2, Point3, Point4, Vector3};
 use revolve::{
     BSpline, BSplineSurface, BezierPatch, BezierSurface, Curve, Error, Intersect,
-    NewtonIntersector, NurbsSurface, ParameterDirection, PatchBounds, RationalBezierPatch, Ray,
-    Surface,
+    NewtonIntersector, Nurbs, NurbsSurface, ParameterDirection, PatchBounds, RationalBezierPatch,
+    Ray, Revolution, Surface,
 };
 
 fn close(a: Point3<f64>, b: Point3<f64>, tol: f64) -> bool {
@@ -283,6 +283,60 @@ fn cone_apex_has_no_normal() {
     // Off the apex the normal exists and makes 45° with the axis.
     let n = s.normal(1e-3, 0.5).unwrap();
     assert!((n.z.abs() - h).abs() < 1e-12, "{n:?}");
+}
+
+/// A surface of revolution about `z` (exact NURBS, four quarter arcs) of a
+/// cubic profile `(r, z)` whose first three control points are the pole
+/// `(0, 0)`: both derivatives across the pole vanish there.
+fn tripled_pole(next: (f64, f64)) -> NurbsSurface {
+    let profile = Nurbs::new(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+        vec![
+            Point2::new(0.0, 0.0),
+            Point2::new(0.0, 0.0),
+            Point2::new(0.0, 0.0),
+            Point2::new(next.0, next.1),
+        ],
+        vec![1.0; 4],
+    )
+    .unwrap();
+    let turned = Revolution::new(profile).with_axis(Point3::origin(), Vector3::z_axis());
+    NurbsSurface::from_revolution(&turned).unwrap()
+}
+
+#[test]
+fn a_pole_on_a_tripled_control_point_has_the_exact_normal() {
+    // Profile (t³, 0): a flat disk, whose normal is ±z everywhere,
+    // the pole included (there S_u = S_uu = 0 and only the third
+    // derivative leaves the pole).
+    let disk = tripled_pole((1.0, 0.0));
+    let off = disk.normal(0.5, 0.3).unwrap();
+    assert!((off.z.abs() - 1.0).abs() < 1e-15, "{off:?}");
+    for k in 0..=16 {
+        let v = disk.domain()[1].0 + (disk.domain()[1].1 - disk.domain()[1].0) * k as f64 / 16.0;
+        let n = disk
+            .normal(0.0, v)
+            .unwrap_or_else(|| panic!("no normal at v {v}"));
+        assert!(
+            (n.into_inner() - off.into_inner()).norm() < 1e-15,
+            "v {v}: {n:?} vs {off:?}"
+        );
+    }
+}
+
+#[test]
+fn a_cone_apex_on_a_tripled_control_point_has_no_normal() {
+    // Profile (t³, t³): a 45° cone with its apex on the tripled point. The
+    // directions leaving the apex form a cone: no tangent plane there.
+    let cone = tripled_pole((1.0, 1.0));
+    let v = 0.5 * (cone.domain()[1].0 + cone.domain()[1].1);
+    assert!(cone.normal(0.0, v).is_none());
+    let n = cone.normal(0.5, v).unwrap();
+    assert!(
+        (n.z.abs() - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-14,
+        "{n:?}"
+    );
 }
 
 #[test]
