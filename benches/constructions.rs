@@ -17,6 +17,9 @@
 //!   (37 certified crossings, tolerance `1e-8`: the coordinates reach 11);
 //! - `intersect_curves/copies`: a 9-span cubic against the same curve with
 //!   two knots inserted (the overlap error, found by the one-arc proof);
+//! - `intersect_space_curves/perpendicular_circles`: two unit circles in
+//!   perpendicular planes through one centre (two crossings, the first
+//!   projection seeing them edge-on);
 //! - `intersect_curve/space_curve_bicubic`: a cubic space curve through
 //!   the gently curved bicubic patch of the other benches.
 //!
@@ -30,7 +33,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use revolve::curve::intersect_curves;
+use revolve::curve::{intersect_curves, intersect_space_curves};
 use revolve::nalgebra::{Point2, Point3, Vector3};
 use revolve::{BSpline, Bezier, Curve, Error, Nurbs, NurbsSurface, Revolution};
 
@@ -126,6 +129,17 @@ fn intersections(c: &mut Criterion) {
     group.bench_function(BenchmarkId::new("intersect_curves", "copies"), |b| {
         b.iter(|| intersect_curves(black_box(&spline), black_box(&refined), 1e-9))
     });
+    let o = Point3::new(0.2, -0.1, 0.3);
+    let flat = Nurbs::arc_3d(o, Vector3::z(), Vector3::x(), 1.0, 0.0, TAU).expect("a circle");
+    let upright = Nurbs::arc_3d(o, Vector3::x(), Vector3::y(), 1.0, 0.0, TAU).expect("a circle");
+    assert_eq!(
+        intersect_space_curves(&flat, &upright, 1e-9).map(|x| x.len()),
+        Ok(2)
+    );
+    group.bench_function(
+        BenchmarkId::new("intersect_space_curves", "perpendicular_circles"),
+        |b| b.iter(|| intersect_space_curves(black_box(&flat), black_box(&upright), 1e-9)),
+    );
     let patch = common::patch_shapes::gentle_bicubic();
     let bounds = revolve::Intersect::bounds(&patch);
     let (lo, hi) = (bounds.min, bounds.max);

@@ -8,7 +8,7 @@ use super::{
     Homogeneous, RationalBezier, RationalBezierSpan, max_abs_coordinate, power_of_two_near,
 };
 use crate::{Curve, Error};
-use nalgebra::{Point, Point2};
+use nalgebra::Point;
 
 /// The smallest tolerance accepted, relative to the largest absolute
 /// control-point coordinate of the inputs (`1e-10`): below it the search
@@ -61,14 +61,17 @@ type Found = (CurveIntersection, usize, usize, [(f64, f64); 2]);
 /// assert!(hits.iter().all(|h| h.certified));
 /// # Ok::<(), revolve::Error>(())
 /// ```
+///
+/// The same type (`CurveIntersection<3>`) describes the intersections of
+/// space curves, [`intersect_space_curves`](super::intersect_space_curves).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CurveIntersection {
+pub struct CurveIntersection<const D: usize = 2> {
     /// The parameter on the first curve.
     pub t_a: f64,
     /// The parameter on the second curve.
     pub t_b: f64,
     /// The common point.
-    pub point: Point2<f64>,
+    pub point: Point<f64, D>,
     /// Whether the crossing is proven single (see the type's docs).
     pub certified: bool,
 }
@@ -165,6 +168,24 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     b: &B,
     tolerance: f64,
 ) -> Result<Vec<CurveIntersection>, Error> {
+    let (spans_a, spans_b) = checked_spans(a, b, tolerance)?;
+    intersect_spans(&spans_a, &spans_b, tolerance)
+}
+
+/// The two curves' rational spans, checked as [`intersect_curves`]
+/// documents (the tolerance, the spans' presence and contract).
+pub(crate) type SpanPair<const D: usize> = (Vec<RationalBezierSpan<D>>, Vec<RationalBezierSpan<D>>);
+
+/// See [`SpanPair`].
+pub(crate) fn checked_spans<A, B, const D: usize>(
+    a: &A,
+    b: &B,
+    tolerance: f64,
+) -> Result<SpanPair<D>, Error>
+where
+    A: Curve<D> + ?Sized,
+    B: Curve<D> + ?Sized,
+{
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::InvalidTolerance { tolerance });
     }
@@ -176,9 +197,18 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
         .ok_or(Error::NotPiecewiseRational)?;
     validate_spans(&spans_a)?;
     validate_spans(&spans_b)?;
+    Ok((spans_a, spans_b))
+}
+
+/// [`intersect_curves`] on checked spans.
+pub(crate) fn intersect_spans(
+    spans_a: &[RationalBezierSpan<2>],
+    spans_b: &[RationalBezierSpan<2>],
+    tolerance: f64,
+) -> Result<Vec<CurveIntersection>, Error> {
     let magnitude = spans_a
         .iter()
-        .chain(&spans_b)
+        .chain(spans_b)
         .map(|s| max_abs_coordinate(s.curve.points()))
         .fold(0.0, f64::max);
     let largest = |spans: &[RationalBezierSpan<2>]| {
@@ -188,7 +218,7 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
             .max()
             .unwrap_or(0)
     };
-    let scale = working_scale(tolerance, magnitude, largest(&spans_a) * largest(&spans_b))?;
+    let scale = working_scale(tolerance, magnitude, largest(spans_a) * largest(spans_b))?;
     let nets_a: Vec<Net<2>> = spans_a.iter().map(|s| span_net(&s.curve, scale)).collect();
     let nets_b: Vec<Net<2>> = spans_b.iter().map(|s| span_net(&s.curve, scale)).collect();
     let mut found: Vec<Found> = Vec::new();
@@ -249,7 +279,7 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     }
     let width = |spans: &[RationalBezierSpan<2>], k: usize| spans[k].knots.1 - spans[k].knots.0;
     let ends = |spans: &[RationalBezierSpan<2>]| (spans[0].knots.0, spans[spans.len() - 1].knots.1);
-    let (ends_a, ends_b) = (ends(&spans_a), ends(&spans_b));
+    let (ends_a, ends_b) = (ends(spans_a), ends(spans_b));
     // The two ends of a closed curve's domain are one point (its seam).
     let seam = |x: f64, y: f64, (s, e): (f64, f64)| {
         let at = |p: f64, q: f64| (p - q).abs() <= DUPLICATE * (e - s);
@@ -258,7 +288,7 @@ pub fn intersect_curves<A: Curve<2> + ?Sized, B: Curve<2> + ?Sized>(
     let coincide = 64.0 * f64::EPSILON * magnitude;
     let mut out: Vec<Entry> = Vec::new();
     for (hit, i, j, region) in found {
-        let (wa, wb) = (width(&spans_a, i), width(&spans_b, j));
+        let (wa, wb) = (width(spans_a, i), width(spans_b, j));
         let same = |o: &Entry| {
             let on_seam = (o.0.point - hit.point).norm() <= coincide;
             let same_a = (o.0.t_a - hit.t_a).abs() <= DUPLICATE * wa.max(o.1)

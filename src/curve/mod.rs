@@ -43,6 +43,7 @@ mod overlap;
 mod pieces;
 mod query;
 mod rational_bezier;
+mod space_curve_intersection;
 mod split;
 mod transform;
 mod unit_scale;
@@ -70,6 +71,7 @@ pub(crate) use query::check_query_point;
 pub use query::{CurveProjector, NearestPoint};
 pub use rational_bezier::{MAX_WEIGHT_RATIO, RationalBezier, RationalBezierSpan};
 pub(crate) use rational_bezier::{normalized_weights, validate_weights};
+pub use space_curve_intersection::intersect_space_curves;
 
 pub use crate::limits::MAX_DERIVATIVE;
 

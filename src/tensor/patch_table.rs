@@ -391,7 +391,8 @@ impl PatchTable {
             let along_t = if across_u { t } else { s };
             let (f, df) = bernstein_with_derivative(&row, along_t);
             let n = f.cross(&df);
-            if !(n.norm() > 1e-7 * f.norm() * df.norm()) {
+            let resolved = n.norm() > 1e-7 * f.norm() * df.norm();
+            if !resolved {
                 continue;
             }
             // S_u × S_v: + at u's start, − at u's end; the other way on v.

@@ -16,4 +16,5 @@ mod operations;
 mod properties;
 mod queries;
 mod rational_bezier;
+mod space_intersections;
 mod stability;

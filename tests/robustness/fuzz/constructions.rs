@@ -7,7 +7,7 @@
 //! intersection point lies on both curves to within the size).
 
 use super::{Fuzz, control_grid, finite_point, fuzz, parameter};
-use revolve::curve::{CurveProjector, intersect_curves};
+use revolve::curve::{CurveProjector, intersect_curves, intersect_space_curves};
 use revolve::nalgebra::{
     Affine2, Affine3, Matrix4, Point2, Point3, Translation2, Vector2, Vector3,
 };
@@ -367,6 +367,23 @@ fn intersections(f: &mut Fuzz) {
     let Some(c) = nurbs_curve(f) else {
         return;
     };
+    if let Some(d) = nurbs_curve(f) {
+        // Sometimes the second space curve is the first, reversed.
+        let d = if f.chance(4) { c.reversed() } else { d };
+        if let Some(Ok(found)) = f.call("intersect_space_curves", || {
+            intersect_space_curves(&c, &d, 1e-9)
+        }) {
+            for x in &found {
+                let (pc, pd): (Point3<f64>, Point3<f64>) = (c.eval(x.t_a), d.eval(x.t_b));
+                let size = pc.coords.amax().max(pd.coords.amax());
+                f.check(
+                    (pc - pd).norm() <= 1e-9 + 1e-12 * size,
+                    "intersect_space_curves",
+                    || format!("{x:?}: {pc:?} vs {pd:?}"),
+                );
+            }
+        }
+    }
     let grid = control_grid(f, 3, 3);
     if let Some(Ok(s)) = f.call("BezierSurface::new", || revolve::BezierSurface::new(grid)) {
         if let Some(Ok(found)) = f.call("BezierSurface::intersect_curve", || {
