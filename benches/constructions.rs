@@ -9,6 +9,8 @@
 //!   parameter inside a span (knot insertion to full multiplicity);
 //! - `parameter_at_length/goblet`: the parameter at half the glass's
 //!   length, tolerance `1e-9` of it;
+//! - `reduce_degree/goblet_1e-4`: the glass as a quadratic within `1e-4`
+//!   (pieces halved where needed, then knots removed);
 //! - `from_revolution/goblet`: the glass's exact NURBS surface of
 //!   revolution (degree 2 in the angle, four quarter arcs);
 //! - `loft/five_circles`: a cubic loft through five parallel circles;
@@ -63,6 +65,11 @@ fn through_points(c: &mut Criterion) {
     let half = 0.5 * glass.arc_length(1e-12).expect("a length").length;
     group.bench_function(BenchmarkId::new("parameter_at_length", "goblet"), |b| {
         b.iter(|| black_box(&glass).parameter_at_length(half, 1e-9 * half))
+    });
+    let reduced = glass.reduce_degree(1e-4).expect("a quadratic within 1e-4");
+    assert_eq!(reduced.degree(), 2);
+    group.bench_function(BenchmarkId::new("reduce_degree", "goblet_1e-4"), |b| {
+        b.iter(|| black_box(&glass).reduce_degree(1e-4))
     });
     let turned = Revolution::new(glass.clone());
     group.bench_function(BenchmarkId::new("from_revolution", "goblet"), |b| {

@@ -607,6 +607,20 @@ pub enum Error {
         /// The number of parameters given.
         found: usize,
     },
+    /// Degree reduction was asked for a curve of degree 0 or 1 (a line
+    /// reduced would lose an end point).
+    DegreeTooLowToReduce {
+        /// The curve's degree.
+        degree: usize,
+    },
+    /// No curve of one degree lower was found within the tolerance: the
+    /// bound reached is given.
+    ReductionInexact {
+        /// The bound on the distance of the best reduction found.
+        deviation: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
     /// A given interpolation parameter is NaN, infinite or beyond
     /// [`MAX_COORDINATE`], or is not above the previous one by at least
     /// `16ε` of the parameters' whole range.
@@ -1090,6 +1104,19 @@ impl fmt::Display for Error {
                 Num(start_dir[0]),
                 Num(start_dir[1]),
                 Num(start_dir[2])
+            ),
+            Error::DegreeTooLowToReduce { degree } => {
+                write!(f, "degree reduction needs degree 2 or more, got {degree}")
+            }
+            Error::ReductionInexact {
+                deviation,
+                tolerance,
+            } => write!(
+                f,
+                "the curve of one degree lower is only within {} of the curve, beyond the \
+                 tolerance {}",
+                Num(deviation),
+                Num(tolerance)
             ),
             Error::ParameterCount { expected, found } => write!(
                 f,

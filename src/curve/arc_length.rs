@@ -8,7 +8,7 @@ use super::homogeneous::{
 };
 use super::query::{scaled_span, spans_magnitude, validate_spans};
 use super::unit_scale::UnitScale;
-use super::{RationalBezierSpan, max_abs_coordinate};
+use super::{RationalBezierSpan, check_tolerance, max_abs_coordinate};
 use crate::bernstein::{self, subdivide};
 use crate::scratch::with_scratch;
 use crate::{Curve, Error};
@@ -513,15 +513,6 @@ impl<S> Adaptive<'_, S> {
     {
         let whole = self.value(piece)?;
         self.run(piece, ends, whole, 0, tally)
-    }
-}
-
-/// [`Error::InvalidTolerance`] unless finite and positive.
-fn check_tolerance(tolerance: f64) -> Result<(), Error> {
-    if tolerance.is_finite() && tolerance > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::InvalidTolerance { tolerance })
     }
 }
 

@@ -31,6 +31,7 @@
 //! re-insertion's own rounding (a few `ε` times the coordinates) is not
 //! added.
 
+use super::check_tolerance;
 use super::knots::min_knot_gap;
 use super::{Homogeneous, scaled_norm};
 use crate::bernstein::Coefficient;
@@ -105,15 +106,6 @@ fn interior_knot(knots: &[f64], domain: (f64, f64), t: f64) -> Result<f64, Error
         .find(|&k| k == t || (k - t).abs() < gap)
         .filter(|&k| k > domain.0 && k < domain.1)
         .ok_or(Error::NotAnInteriorKnot { t })
-}
-
-/// [`Error::InvalidTolerance`] unless finite and positive.
-fn check_tolerance(tolerance: f64) -> Result<(), Error> {
-    if tolerance.is_finite() && tolerance > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::InvalidTolerance { tolerance })
-    }
 }
 
 impl<const D: usize> BSpline<D> {

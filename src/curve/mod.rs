@@ -43,6 +43,7 @@ mod overlap;
 mod pieces;
 mod query;
 mod rational_bezier;
+mod reduce;
 mod space_curve_intersection;
 mod split;
 mod transform;
@@ -463,6 +464,15 @@ pub(crate) fn point_bounds<const D: usize>(
 /// The largest absolute coordinate of the points (`0` for none).
 pub(crate) fn max_abs_coordinate<const D: usize>(points: &[Point<f64, D>]) -> f64 {
     points.iter().fold(0.0_f64, |m, p| m.max(p.coords.amax()))
+}
+
+/// [`Error::InvalidTolerance`] unless `tolerance` is finite and positive.
+pub(crate) fn check_tolerance(tolerance: f64) -> Result<(), Error> {
+    if tolerance.is_finite() && tolerance > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidTolerance { tolerance })
+    }
 }
 
 /// `|v|`, computed as `m·|v/m|` with `m` the largest absolute component, so

@@ -16,5 +16,6 @@ mod operations;
 mod properties;
 mod queries;
 mod rational_bezier;
+mod reduce;
 mod space_intersections;
 mod stability;

@@ -143,6 +143,23 @@ fn curve_operations(f: &mut Fuzz) {
             || format!("at {t}: {at_left:?} {at_right:?}"),
         );
     }
+    // Degree reduction of a B-spline through the curve's control points
+    // (any tolerance): within the tolerance at a few parameters.
+    if let Ok(spline) = BSpline::new(c.degree(), c.knots().to_vec(), c.points().to_vec()) {
+        let tolerance = if f.chance(4) { f.number() } else { 1e-3 };
+        if let Some(Ok(reduced)) =
+            f.call("BSpline::reduce_degree", || spline.reduce_degree(tolerance))
+        {
+            let u = parameter(f, spline.domain());
+            let (p, q) = (spline.eval(u), reduced.eval(u));
+            let size = p.coords.amax().max(q.coords.amax());
+            f.check(
+                (p - q).norm() <= tolerance + 1e-12 * size,
+                "BSpline::reduce_degree",
+                || format!("at {u}: {p:?} vs {q:?}, tolerance {tolerance}"),
+            );
+        }
+    }
     let m = Matrix4::from_fn(|i, j| match (i, j) {
         (3, 3) => 1.0,
         (3, _) => 0.0,
