@@ -6,7 +6,7 @@ use super::{BSplineSurface, BezierSurface, NurbsSurface};
 use crate::bernstein::lerp;
 use crate::curve::Homogeneous;
 use crate::limits::MAX_COORDINATE;
-use crate::{Error, Nurbs, ParameterDirection};
+use crate::{Error, Nurbs, ParameterDirection, Surface};
 use nalgebra::Point3;
 
 /// The value at `t` of the spline of degree `p` on `knots` with the control
@@ -151,6 +151,31 @@ impl BezierSurface {
     pub fn isocurve_v(&self, v: f64) -> Result<Nurbs<3>, Error> {
         self.spline()?.isocurve(1, v)
     }
+
+    /// The four boundary curves, exactly: `[S(0, ·), S(1, ·), S(·, 0),
+    /// S(·, 1)]` (the isocurves at the ends of the domain; a collapsed edge
+    /// gives a curve of one point).
+    ///
+    /// # Errors
+    /// None in practice (the isocurves' own errors).
+    ///
+    /// ```
+    /// use revolve::{BezierSurface, Curve, Surface};
+    /// use revolve::nalgebra::Point3;
+    ///
+    /// let s = BezierSurface::new(vec![
+    ///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+    ///     vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+    /// ])?;
+    /// let [u0, _u1, _v0, v1] = s.boundary_curves()?;
+    /// assert!((u0.eval(0.5) - s.eval(0.0, 0.5)).norm() < 1e-15);
+    /// assert!((v1.eval(0.5) - s.eval(0.5, 1.0)).norm() < 1e-15);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    pub fn boundary_curves(&self) -> Result<[Nurbs<3>; 4], Error> {
+        let spline = self.spline()?;
+        boundaries(self.domain(), |axis, x| spline.isocurve(axis, x))
+    }
 }
 
 impl BSplineSurface {
@@ -203,6 +228,16 @@ impl BSplineSurface {
     /// ```
     pub fn isocurve_v(&self, v: f64) -> Result<Nurbs<3>, Error> {
         self.core().isocurve(1, v)
+    }
+
+    /// The four boundary curves, exactly: the isocurves at the ends of the
+    /// domain, `[S(u₀, ·), S(u₁, ·), S(·, v₀), S(·, v₁)]` (a collapsed edge
+    /// gives a curve of one point).
+    ///
+    /// # Errors
+    /// The isocurves' errors (only at the weight-ratio bound for NURBS).
+    pub fn boundary_curves(&self) -> Result<[Nurbs<3>; 4], Error> {
+        boundaries(self.domain(), |axis, x| self.core().isocurve(axis, x))
     }
 }
 
@@ -269,4 +304,27 @@ impl NurbsSurface {
     pub fn isocurve_v(&self, v: f64) -> Result<Nurbs<3>, Error> {
         self.core().isocurve(1, v)
     }
+
+    /// The four boundary curves, exactly: the isocurves at the ends of the
+    /// domain, `[S(u₀, ·), S(u₁, ·), S(·, v₀), S(·, v₁)]` (a collapsed edge
+    /// gives a curve of one point).
+    ///
+    /// # Errors
+    /// The isocurves' errors (only at the weight-ratio bound for NURBS).
+    pub fn boundary_curves(&self) -> Result<[Nurbs<3>; 4], Error> {
+        boundaries(self.domain(), |axis, x| self.core().isocurve(axis, x))
+    }
+}
+
+/// The isocurves at the ends of `domain`: `u` first, then `v`.
+fn boundaries(
+    [du, dv]: [(f64, f64); 2],
+    isocurve: impl Fn(usize, f64) -> Result<Nurbs<3>, Error>,
+) -> Result<[Nurbs<3>; 4], Error> {
+    Ok([
+        isocurve(0, du.0)?,
+        isocurve(0, du.1)?,
+        isocurve(1, dv.0)?,
+        isocurve(1, dv.1)?,
+    ])
 }

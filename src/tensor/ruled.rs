@@ -198,4 +198,41 @@ impl NurbsSurface {
             weights,
         )
     }
+
+    /// The bilinear patch through four corners (the "four-point surface"):
+    /// `S(u, v) = (1 − u)(1 − v)·p00 + u(1 − v)·p10 + (1 − u)v·p01 + uv·p11`
+    /// on `[0, 1]²`, degree 1 in both parameters, weights 1. It is the
+    /// ruled surface between the segments `p00 p10` and `p01 p11`; four
+    /// coplanar corners give a flat quadrilateral, otherwise a hyperbolic
+    /// paraboloid.
+    ///
+    /// ```
+    /// use revolve::{NurbsSurface, Surface};
+    /// use revolve::nalgebra::Point3;
+    ///
+    /// let s = NurbsSurface::bilinear(
+    ///     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+    ///     Point3::new(0.0, 1.0, 0.0), Point3::new(1.0, 1.0, 1.0),
+    /// )?;
+    /// assert!((s.eval(0.3, 0.6) - Point3::new(0.3, 0.6, 0.18)).norm() < 1e-15);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The errors of [`NurbsSurface::new`] for the corners
+    /// ([`Error::NonFiniteGridPoint`], [`Error::GridCoordinateTooLarge`]).
+    pub fn bilinear(
+        p00: Point3<f64>,
+        p10: Point3<f64>,
+        p01: Point3<f64>,
+        p11: Point3<f64>,
+    ) -> Result<NurbsSurface, Error> {
+        let ends = vec![0.0, 0.0, 1.0, 1.0];
+        NurbsSurface::new(
+            (1, 1),
+            (ends.clone(), ends),
+            vec![vec![p00, p01], vec![p10, p11]],
+            vec![vec![1.0; 2]; 2],
+        )
+    }
 }

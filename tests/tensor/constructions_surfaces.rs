@@ -7,7 +7,8 @@
 //! `P(u) + T(v) − T(v₀)`), isocurves against the surface's points, splits
 //! against the surface at the mapped parameters, affine maps commuting with
 //! evaluation (`T(S(u, v)) = S'(u, v)`, normals by the inverse transpose),
-//! and every error path with its variant. Tolerances are a few ulps of the
+//! bilinear surfaces against their formula, boundary curves against the
+//! surface at the domain's ends, and every error path with its variant. Tolerances are a few ulps of the
 //! size (1e-14 relative unless stated).
 
 use revolve_testkit as common;
@@ -923,5 +924,89 @@ mod properties {
                 prop_assert!(close(half.eval(u, v), p, 1e-13));
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Four-point (bilinear) surfaces and boundary curves
+// ---------------------------------------------------------------------------
+
+#[test]
+fn bilinear_surfaces_follow_the_closed_form() {
+    let mut rng = Rng(0xb111);
+    for _ in 0..50 {
+        let corners = grid(&mut rng, 2, 2);
+        let (p00, p01, p10, p11) = (corners[0][0], corners[0][1], corners[1][0], corners[1][1]);
+        let s = NurbsSurface::bilinear(p00, p10, p01, p11).unwrap();
+        assert_eq!(s.domain(), [(0.0, 1.0), (0.0, 1.0)]);
+        for u in params((0.0, 1.0), 7) {
+            for v in params((0.0, 1.0), 7) {
+                let want = Point3::from(
+                    p00.coords * ((1.0 - u) * (1.0 - v))
+                        + p10.coords * (u * (1.0 - v))
+                        + p01.coords * ((1.0 - u) * v)
+                        + p11.coords * (u * v),
+                );
+                assert!(close(s.eval(u, v), want, 1e-14), "({u}, {v})");
+                // ∂S/∂u = (1 − v)(p10 − p00) + v(p11 − p01).
+                let su = (p10 - p00) * (1.0 - v) + (p11 - p01) * v;
+                assert!((s.partials(u, v).0 - su).norm() < 1e-13);
+            }
+        }
+    }
+    let bad = Point3::new(f64::NAN, 0.0, 0.0);
+    assert!(
+        NurbsSurface::bilinear(bad, Point3::origin(), Point3::origin(), Point3::origin()).is_err()
+    );
+}
+
+#[test]
+fn boundary_curves_are_the_surface_at_the_domain_ends() {
+    let mut rng = Rng(0xb0d4);
+    let bezier = BezierSurface::new(grid(&mut rng, 4, 3)).unwrap();
+    let spline = BSplineSurface::clamped((2, 3), grid(&mut rng, 5, 6)).unwrap();
+    let sphere = NurbsSurface::from_revolution(&revolve::Revolution::new(
+        Nurbs::arc(
+            Point2::origin(),
+            1.0,
+            -std::f64::consts::FRAC_PI_2,
+            std::f64::consts::FRAC_PI_2,
+        )
+        .unwrap(),
+    ))
+    .unwrap();
+    let surfaces: Vec<(&str, &dyn Surface, [Nurbs<3>; 4])> = vec![
+        ("bezier", &bezier, bezier.boundary_curves().unwrap()),
+        ("bspline", &spline, spline.boundary_curves().unwrap()),
+        ("sphere", &sphere, sphere.boundary_curves().unwrap()),
+    ];
+    for (name, s, [u0, u1, v0, v1]) in surfaces {
+        let [du, dv] = s.domain();
+        for t in params(dv, 20) {
+            assert!(
+                close(u0.eval(t), s.eval(du.0, t), 1e-14),
+                "{name}: u0 at {t}"
+            );
+            assert!(
+                close(u1.eval(t), s.eval(du.1, t), 1e-14),
+                "{name}: u1 at {t}"
+            );
+        }
+        for t in params(du, 20) {
+            assert!(
+                close(v0.eval(t), s.eval(t, dv.0), 1e-14),
+                "{name}: v0 at {t}"
+            );
+            assert!(
+                close(v1.eval(t), s.eval(t, dv.1), 1e-14),
+                "{name}: v1 at {t}"
+            );
+        }
+    }
+    // The sphere's u ends are its poles: curves of one point.
+    let [south, north, _, _] = sphere.boundary_curves().unwrap();
+    for t in params(south.domain(), 8) {
+        assert!(close(south.eval(t), Point3::new(0.0, -1.0, 0.0), 1e-15));
+        assert!(close(north.eval(t), Point3::new(0.0, 1.0, 0.0), 1e-15));
     }
 }
