@@ -1213,3 +1213,82 @@ fn new_errors_name_the_problem() {
         assert!(error.to_string().contains(text), "{error}");
     }
 }
+
+// ---------------------------------------------------------------------------
+// Property tests: split, transforms and the length parameter on random
+// NURBS curves
+// ---------------------------------------------------------------------------
+
+mod properties {
+    use super::{EPS, Rng, random_affine2, random_points};
+    use proptest::prelude::*;
+    use revolve::{Curve, Nurbs};
+
+    /// A clamped NURBS of degree `p` on `n` random points with weights in
+    /// `[0.2, 5]` and random increasing knots.
+    fn random_nurbs(seed: u64, p: usize, n: usize) -> Nurbs<2> {
+        let mut rng = Rng(seed);
+        let points = random_points::<2>(&mut rng, n);
+        let weights = (0..n).map(|_| rng.uniform(0.2, 5.0)).collect();
+        let mut inner: Vec<f64> = (0..n - p - 1).map(|_| rng.uniform(0.0, 1.0)).collect();
+        inner.sort_by(f64::total_cmp);
+        let mut knots = vec![0.0; p + 1];
+        knots.extend(inner);
+        knots.extend(vec![1.0; p + 1]);
+        Nurbs::new(p, knots, points, weights).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 128, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// The halves of a split are the curve on either side of the cut,
+        /// at the same parameters.
+        #[test]
+        fn split_halves_are_the_curve(
+            seed in any::<u64>(), p in 1usize..=5, extra in 0usize..6, cut in 0.01f64..0.99,
+        ) {
+            let c = random_nurbs(seed, p, p + 1 + extra);
+            let (l, r) = c.split(cut).unwrap();
+            prop_assert_eq!(l.domain(), (0.0, cut));
+            prop_assert_eq!(r.domain(), (cut, 1.0));
+            for k in 0..=50 {
+                let s = k as f64 / 50.0;
+                let half = if s < cut { &l } else { &r };
+                prop_assert!((half.eval(s) - c.eval(s)).amax() <= 1e4 * EPS, "at {}", s);
+            }
+        }
+
+        /// An affine map of the control points is the map of the curve.
+        #[test]
+        fn affine_maps_commute_with_evaluation(
+            seed in any::<u64>(), p in 1usize..=5, extra in 0usize..6,
+        ) {
+            let c = random_nurbs(seed, p, p + 1 + extra);
+            let map = random_affine2(&mut Rng(seed ^ 0x5eed));
+            let image = c.transformed(&map);
+            for k in 0..=40 {
+                let s = k as f64 / 40.0;
+                prop_assert!((map * c.eval(s) - image.eval(s)).amax() <= 1e4 * EPS, "at {}", s);
+            }
+        }
+
+        /// The parameter at a length is where the arc length from the
+        /// start reaches it (within the tolerance asked for).
+        #[test]
+        fn the_parameter_at_a_length_has_that_length(
+            seed in any::<u64>(), p in 1usize..=4, extra in 0usize..4, fraction in 0.0f64..=1.0,
+        ) {
+            let c = random_nurbs(seed, p, p + 1 + extra);
+            let total = c.arc_length(1e-10).unwrap().length;
+            let tolerance = 1e-8 * total.max(1e-300);
+            let u = c.parameter_at_length(fraction * total, tolerance).unwrap();
+            prop_assert!((0.0..=1.0).contains(&u));
+            let (head, _) = if u > 0.0 && u < 1.0 { c.split(u).unwrap() } else { (c.clone(), c.clone()) };
+            let reached = if u <= 0.0 { 0.0 } else if u >= 1.0 { total } else {
+                head.arc_length(1e-10).unwrap().length
+            };
+            prop_assert!((reached - fraction * total).abs() <= tolerance + 1e-9 * total,
+                "{} vs {}", reached, fraction * total);
+        }
+    }
+}

@@ -237,3 +237,34 @@ fn copies_overlap_and_bad_input_is_an_error() {
         Err(Error::ToleranceTooSmall { .. })
     ));
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, failure_persistence: None, ..Default::default() })]
+
+    /// A random cubic pair built to meet at `(s₀, t₀)` under a random
+    /// rigid motion: the meeting is found there, and every result is a
+    /// place where the curves are within the tolerance.
+    #[test]
+    fn a_meeting_built_in_is_found(seed in proptest::prelude::any::<u64>(), s0 in 0.05f64..0.95, t0 in 0.05f64..0.95) {
+        let mut rng = Rng(seed | 1);
+        let m = motion(seed);
+        let cubic = |rng: &mut Rng| {
+            let pts: Vec<Point3<f64>> = (0..4)
+                .map(|_| m * Point3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+                .collect();
+            Bezier::new(pts).unwrap()
+        };
+        let a = cubic(&mut rng);
+        let b0 = cubic(&mut rng);
+        let shift = a.eval(s0) - b0.eval(t0);
+        let b = Bezier::new(b0.points().iter().map(|p| p + shift).collect()).unwrap();
+        let hits = intersect_space_curves(&a, &b, TOL).unwrap();
+        proptest::prop_assert!(
+            hits.iter().any(|h| (h.t_a - s0).abs() < 1e-8 && (h.t_b - t0).abs() < 1e-8),
+            "({}, {}) not in {:?}", s0, t0, hits
+        );
+        for h in &hits {
+            proptest::prop_assert!((a.eval(h.t_a) - b.eval(h.t_b)).norm() <= TOL);
+        }
+    }
+}
