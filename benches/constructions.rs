@@ -22,6 +22,8 @@
 //! - `intersect_space_curves/perpendicular_circles`: two unit circles in
 //!   perpendicular planes through one centre (two crossings, the first
 //!   projection seeing them edge-on);
+//! - `intersect_surface/sphere_plane_1e-6`: the NURBS unit sphere and an
+//!   oblique plane (one circle of radius 0.92, chords within `1e-6`);
 //! - `intersect_curve/space_curve_bicubic`: a cubic space curve through
 //!   the gently curved bicubic patch of the other benches.
 //!
@@ -30,7 +32,7 @@
 
 use revolve_testkit as common;
 
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -146,6 +148,27 @@ fn intersections(c: &mut Criterion) {
     group.bench_function(
         BenchmarkId::new("intersect_space_curves", "perpendicular_circles"),
         |b| b.iter(|| intersect_space_curves(black_box(&flat), black_box(&upright), 1e-9)),
+    );
+    let sphere = NurbsSurface::from_revolution(&Revolution::new(
+        Nurbs::arc(Point2::origin(), 1.0, -FRAC_PI_2, FRAC_PI_2).expect("a half circle"),
+    ))
+    .expect("a sphere");
+    let slope = Vector3::new(0.3, 1.0, 0.2).normalize();
+    let e1 = slope.cross(&Vector3::z()).normalize();
+    let e2 = slope.cross(&e1);
+    let o = Point3::from(slope * 0.4);
+    let cut = NurbsSurface::bilinear(
+        o - 2.0 * e1 - 2.0 * e2,
+        o + 2.0 * e1 - 2.0 * e2,
+        o - 2.0 * e1 + 2.0 * e2,
+        o + 2.0 * e1 + 2.0 * e2,
+    )
+    .expect("a plane");
+    let curves = sphere.intersect_surface(&cut, 1e-6).expect("a circle");
+    assert!(curves.len() == 1 && curves[0].closed);
+    group.bench_function(
+        BenchmarkId::new("intersect_surface", "sphere_plane_1e-6"),
+        |b| b.iter(|| black_box(&sphere).intersect_surface(black_box(&cut), 1e-6)),
     );
     let patch = common::patch_shapes::gentle_bicubic();
     let bounds = revolve::Intersect::bounds(&patch);

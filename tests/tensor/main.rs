@@ -17,4 +17,5 @@ mod patch_hard_cases;
 mod patch_intersect;
 mod patch_mesh;
 mod patch_reference;
+mod surface_intersection;
 mod tensor_surfaces;

@@ -266,6 +266,43 @@ fn surface_operations(f: &mut Fuzz) {
     }) else {
         return;
     };
+    // One call in eight: the surface against a bilinear patch through its
+    // box; every traced point on both surfaces.
+    if f.chance(8) {
+        let b = s.bounds();
+        let corner = |f: &mut Fuzz| {
+            Point3::from(
+                b.min.coords
+                    + b.extent().component_mul(&Vector3::new(
+                        f.rng.unit(),
+                        f.rng.unit(),
+                        f.rng.unit(),
+                    )),
+            )
+        };
+        let corners = [corner(f), corner(f), corner(f), corner(f)];
+        if let Ok(other) = NurbsSurface::bilinear(corners[0], corners[1], corners[2], corners[3]) {
+            let tolerance = if f.chance(4) { f.number() } else { 1e-6 };
+            if let Some(Ok(curves)) = f.call("NurbsSurface::intersect_surface", || {
+                s.intersect_surface(&other, tolerance)
+            }) {
+                let size = b
+                    .min
+                    .coords
+                    .amax()
+                    .max(b.max.coords.amax())
+                    .max(f64::MIN_POSITIVE);
+                for p in curves.iter().flat_map(|c| &c.points) {
+                    let (on_a, on_b) = (s.eval(p.uv_a.0, p.uv_a.1), other.eval(p.uv_b.0, p.uv_b.1));
+                    f.check(
+                        (on_a - on_b).norm() <= 1e-9 * size,
+                        "NurbsSurface::intersect_surface",
+                        || format!("{p:?}: {on_a:?} vs {on_b:?}"),
+                    );
+                }
+            }
+        }
+    }
     let [du, dv] = s.domain();
     let (u, v) = (parameter(f, du), parameter(f, dv));
     if let Some(Ok(c)) = f.call("NurbsSurface::isocurve_u", || s.isocurve_u(u)) {
