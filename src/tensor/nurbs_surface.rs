@@ -1,7 +1,7 @@
 //! Tensor-product rational B-spline (NURBS) surfaces.
 
-use super::BSplineSurface;
 use super::bspline_surface::TensorSpline;
+use super::{BSplineSurface, BezierSurface};
 use crate::Mesh;
 use crate::{Aabb, Error, Hit, Intersect, PatchBounds, Ray, Surface, Tolerance};
 use nalgebra::{Point3, Unit, Vector3};
@@ -229,6 +229,34 @@ impl From<BSplineSurface> for NurbsSurface {
         NurbsSurface {
             core: s.core().clone(),
         }
+    }
+}
+
+impl TryFrom<&BezierSurface> for NurbsSurface {
+    type Error = Error;
+
+    /// The same surface as one NURBS patch with unit weights, on `[0, 1]²`
+    /// (clamped knots `0 … 0 1 … 1`), e.g. to intersect it with another
+    /// surface ([`NurbsSurface::intersect_surface`]).
+    ///
+    /// ```
+    /// use revolve::{BezierSurface, NurbsSurface, Surface};
+    /// use revolve::nalgebra::Point3;
+    ///
+    /// let b = BezierSurface::new(vec![
+    ///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+    ///     vec![Point3::new(1.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0)],
+    /// ])?;
+    /// let n = NurbsSurface::try_from(&b)?;
+    /// assert!((n.eval(0.3, 0.6) - b.eval(0.3, 0.6)).norm() < 1e-15);
+    /// # Ok::<(), revolve::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The checks of [`NurbsSurface::new`] (none fail for a valid Bézier
+    /// surface in practice).
+    fn try_from(s: &BezierSurface) -> Result<Self, Error> {
+        Ok(NurbsSurface { core: s.spline()? })
     }
 }
 

@@ -1,7 +1,9 @@
 //! Intersections of two NURBS surfaces (`NurbsSurface::intersect_surface`)
 //! against closed forms: the unit sphere and planes (circles), two spheres
 //! (a circle in the radical plane), a cylinder and an oblique plane (an
-//! ellipse), two crossing planes (a segment). Every traced point must
+//! ellipse), two crossing planes (a segment), a Bézier hump cut level
+//! (through its NURBS form; the points checked on the Bézier patch
+//! itself). Every traced point must
 //! satisfy both surfaces' equations to `1e-10`; closed branches must have
 //! the closed form's length to `1e-4` relative (the chords stay within the
 //! tolerance `1e-6` of the curve).
@@ -202,5 +204,35 @@ fn surfaces_apart_do_not_meet_and_bad_tolerances_are_errors() {
     assert!(!curves.is_empty());
     for c in &curves {
         check_points(c, &bumpy, &flat, |x| x.y);
+    }
+}
+
+#[test]
+fn a_bezier_patch_through_its_nurbs_form() {
+    // A bicubic hump over [0, 3]² (heights 0 at the rim, 2 inside) cut by
+    // z = 0.5: a closed curve, every point on the Bézier patch itself (its
+    // own evaluator) and on the plane.
+    let net: Vec<Vec<Point3<f64>>> = (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let inside = (1..3).contains(&i) && (1..3).contains(&j);
+                    Point3::new(i as f64, j as f64, if inside { 2.0 } else { 0.0 })
+                })
+                .collect()
+        })
+        .collect();
+    let hump = revolve::BezierSurface::new(net).unwrap();
+    let nurbs = NurbsSurface::try_from(&hump).unwrap();
+    let cut = plane(Point3::new(1.5, 1.5, 0.5), Vector3::x(), Vector3::y());
+    let curves = nurbs.intersect_surface(&cut, TOL).unwrap();
+    assert_eq!(curves.len(), 1);
+    assert!(curves[0].closed);
+    for p in &curves[0].points {
+        assert!(
+            (hump.eval(p.uv_a.0, p.uv_a.1) - p.point).norm() < 1e-10,
+            "{p:?}"
+        );
+        assert!((p.point.z - 0.5).abs() < 1e-10, "{p:?}");
     }
 }
