@@ -3,10 +3,9 @@
 //! (a circle in the radical plane), a cylinder and an oblique plane (an
 //! ellipse), two crossing planes (a segment), a Bézier hump cut level
 //! (through its NURBS form; the points checked on the Bézier patch
-//! itself). Every traced point must
-//! satisfy both surfaces' equations to `1e-10`; closed branches must have
-//! the closed form's length to `1e-4` relative (the chords stay within the
-//! tolerance `1e-6` of the curve).
+//! itself). Every traced point must satisfy both surfaces' equations to
+//! `1e-10`; closed branches must have the closed form's length to `1e-4`
+//! relative (the chords stay within the tolerance `1e-6` of the curve).
 
 use revolve::nalgebra::{Affine3, Matrix4, Point2, Point3, Vector3};
 use revolve::tensor::SurfaceIntersectionCurve;
