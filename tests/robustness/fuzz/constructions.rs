@@ -9,10 +9,11 @@
 use super::{Fuzz, control_grid, finite_point, fuzz, parameter};
 use revolve::curve::{CurveProjector, intersect_curves, intersect_space_curves};
 use revolve::nalgebra::{
-    Affine2, Affine3, Matrix4, Point2, Point3, Translation2, Vector2, Vector3,
+    Affine2, Affine3, Matrix4, Point, Point2, Point3, Translation2, Vector2, Vector3,
 };
 use revolve::{
-    BSpline, BSplineSurface, Curve, Error, Intersect, Nurbs, NurbsSurface, Revolution, Surface,
+    Aabb, BSpline, BSplineSurface, Curve, Error, Intersect, Nurbs, NurbsSurface, Revolution,
+    Surface,
 };
 
 /// Seeds 0..6 000 (a few seconds).
@@ -64,10 +65,7 @@ fn curves_through_points(f: &mut Fuzz) {
     }) {
         let (a, b) = c.domain();
         let (first, last) = (c.eval(a), c.eval(b));
-        let size = points
-            .iter()
-            .fold(0.0_f64, |m, p| m.max(p.coords.amax()))
-            .max(f64::MIN_POSITIVE);
+        let size = data_size(&points);
         f.check(
             (first - points[0]).amax() <= 1e-9 * size
                 && (last - points[n - 1]).amax() <= 1e-9 * size,
@@ -98,10 +96,7 @@ fn curves_through_points(f: &mut Fuzz) {
     }) {
         let k = f.below(n);
         let (p, q) = (c.eval(params[k]), points[k]);
-        let size = points
-            .iter()
-            .fold(0.0_f64, |m, p| m.max(p.coords.amax()))
-            .max(f64::MIN_POSITIVE);
+        let size = data_size(&points);
         // Within the data's size times the conditioning a random parameter
         // spacing allows; the check is for NaN and gross misses.
         f.check(
@@ -160,12 +155,7 @@ fn curve_operations(f: &mut Fuzz) {
             );
         }
     }
-    let m = Matrix4::from_fn(|i, j| match (i, j) {
-        (3, 3) => 1.0,
-        (3, _) => 0.0,
-        _ => f.number(),
-    });
-    let map = Affine3::from_matrix_unchecked(m);
+    let map = random_affine3(f);
     if let Some(Ok(moved)) = f.call("Nurbs::try_transformed", || c.try_transformed(&map)) {
         let p = moved.eval(t);
         f.check(finite_point(&p), "Nurbs::try_transformed", || {
@@ -286,12 +276,7 @@ fn surface_operations(f: &mut Fuzz) {
             if let Some(Ok(curves)) = f.call("NurbsSurface::intersect_surface", || {
                 s.intersect_surface(&other, tolerance)
             }) {
-                let size = b
-                    .min
-                    .coords
-                    .amax()
-                    .max(b.max.coords.amax())
-                    .max(f64::MIN_POSITIVE);
+                let size = box_size(&b);
                 for p in curves.iter().flat_map(|c| &c.points) {
                     let (on_a, on_b) = (s.eval(p.uv_a.0, p.uv_a.1), other.eval(p.uv_b.0, p.uv_b.1));
                     f.check(
@@ -308,15 +293,8 @@ fn surface_operations(f: &mut Fuzz) {
     if let Some(Ok(c)) = f.call("NurbsSurface::isocurve_u", || s.isocurve_u(u)) {
         let t = parameter(f, c.domain());
         let (on_curve, on_surface) = (c.eval(t), s.eval(u, t));
-        // The size of the coordinates (a surface collapsed to a point has
-        // no extent, but its points still round at their magnitude).
         let b = s.bounds();
-        let size = b
-            .min
-            .coords
-            .amax()
-            .max(b.max.coords.amax())
-            .max(f64::MIN_POSITIVE);
+        let size = box_size(&b);
         f.check(
             (on_curve - on_surface).norm() <= 1e-9 * size,
             "NurbsSurface::isocurve_u",
@@ -327,12 +305,7 @@ fn surface_operations(f: &mut Fuzz) {
         surface_point_check(f, &low, "NurbsSurface::split_v");
         surface_point_check(f, &high, "NurbsSurface::split_v");
     }
-    let m = Matrix4::from_fn(|i, j| match (i, j) {
-        (3, 3) => 1.0,
-        (3, _) => 0.0,
-        _ => f.number(),
-    });
-    let map = Affine3::from_matrix_unchecked(m);
+    let map = random_affine3(f);
     if let Some(Ok(t)) = f.call("NurbsSurface::try_transformed", || s.try_transformed(&map)) {
         surface_point_check(f, &t, "NurbsSurface::try_transformed");
     }
@@ -444,12 +417,7 @@ fn intersections(f: &mut Fuzz) {
             s.intersect_curve(&c, 1e-9)
         }) {
             let b = s.bounds();
-            let size = b
-                .min
-                .coords
-                .amax()
-                .max(b.max.coords.amax())
-                .max(f64::MIN_POSITIVE);
+            let size = box_size(&b);
             for x in found.iter().filter(|x| x.certified) {
                 let (pc, ps): (Point3<f64>, Point3<f64>) = (c.eval(x.t), s.eval(x.uv.0, x.uv.1));
                 f.check(
@@ -470,4 +438,33 @@ fn surface_point_check<S: Surface>(f: &mut Fuzz, s: &S, name: &'static str) {
         let ok = finite_point(&p) && su.iter().chain(sv.iter()).all(|x| x.is_finite());
         f.check(ok, name, || format!("at ({u}, {v}): {p:?} {su:?} {sv:?}"));
     }
+}
+
+/// The largest coordinate of the points (at least the smallest normal).
+fn data_size<const D: usize>(points: &[Point<f64, D>]) -> f64 {
+    points
+        .iter()
+        .fold(0.0_f64, |m, p| m.max(p.coords.amax()))
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The largest coordinate of a box's corners (a surface collapsed to a
+/// point has no extent, but its points still round at their magnitude).
+fn box_size(b: &Aabb) -> f64 {
+    b.min
+        .coords
+        .amax()
+        .max(b.max.coords.amax())
+        .max(f64::MIN_POSITIVE)
+}
+
+/// An affine map of space with entries drawn from the stream (any
+/// numbers, singular ones included).
+fn random_affine3(f: &mut Fuzz) -> Affine3<f64> {
+    let m = Matrix4::from_fn(|i, j| match (i, j) {
+        (3, 3) => 1.0,
+        (3, _) => 0.0,
+        _ => f.number(),
+    });
+    Affine3::from_matrix_unchecked(m)
 }
