@@ -200,25 +200,36 @@ where
     Ok((spans_a, spans_b))
 }
 
-/// [`intersect_curves`] on checked spans.
-pub(crate) fn intersect_spans(
-    spans_a: &[RationalBezierSpan<2>],
-    spans_b: &[RationalBezierSpan<2>],
-    tolerance: f64,
-) -> Result<Vec<CurveIntersection>, Error> {
+/// The largest absolute control-point coordinate of both curves' spans,
+/// and the size of their largest pair's system (the product of the two
+/// largest control polygons' point counts).
+pub(crate) fn spans_extent<const D: usize>(
+    spans_a: &[RationalBezierSpan<D>],
+    spans_b: &[RationalBezierSpan<D>],
+) -> (f64, usize) {
     let magnitude = spans_a
         .iter()
         .chain(spans_b)
         .map(|s| max_abs_coordinate(s.curve.points()))
         .fold(0.0, f64::max);
-    let largest = |spans: &[RationalBezierSpan<2>]| {
+    let largest = |spans: &[RationalBezierSpan<D>]| {
         spans
             .iter()
             .map(|s| s.curve.points().len())
             .max()
             .unwrap_or(0)
     };
-    let scale = working_scale(tolerance, magnitude, largest(spans_a) * largest(spans_b))?;
+    (magnitude, largest(spans_a) * largest(spans_b))
+}
+
+/// [`intersect_curves`] on checked spans.
+pub(crate) fn intersect_spans(
+    spans_a: &[RationalBezierSpan<2>],
+    spans_b: &[RationalBezierSpan<2>],
+    tolerance: f64,
+) -> Result<Vec<CurveIntersection>, Error> {
+    let (magnitude, coefficients) = spans_extent(spans_a, spans_b);
+    let scale = working_scale(tolerance, magnitude, coefficients)?;
     let nets_a: Vec<Net<2>> = spans_a.iter().map(|s| span_net(&s.curve, scale)).collect();
     let nets_b: Vec<Net<2>> = spans_b.iter().map(|s| span_net(&s.curve, scale)).collect();
     let mut found: Vec<Found> = Vec::new();

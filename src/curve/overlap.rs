@@ -29,7 +29,7 @@
 //! not pass (curves that agree within the tolerance without being one
 //! arc, such as a spline and its approximation) is left to the search.
 
-use super::homogeneous::Homogeneous;
+use super::homogeneous::{Homogeneous, homogeneous_points};
 use super::query::CurveProjector;
 use super::{Curve, RationalBezier, RationalBezierSpan};
 use crate::bernstein::restrict;
@@ -76,8 +76,8 @@ pub(crate) fn coincident_stretch<const D: usize>(
     {
         return None;
     }
-    let mut pa = homogeneous(&a);
-    let mut pb = homogeneous(&b);
+    let mut pa = homogeneous_points(a.points(), a.weights().iter().copied());
+    let mut pb = homogeneous_points(b.points(), b.weights().iter().copied());
     restrict(&mut pa, (first.0, last.0));
     restrict(&mut pb, (first.1.min(last.1), first.1.max(last.1)));
     if first.1 > last.1 {
@@ -103,14 +103,6 @@ fn same_degree<const D: usize>(
         raise(a, db.saturating_sub(da))?,
         raise(b, da.saturating_sub(db))?,
     ))
-}
-
-fn homogeneous<const D: usize>(c: &RationalBezier<D>) -> Vec<Homogeneous<D>> {
-    c.points()
-        .iter()
-        .zip(c.weights())
-        .map(|(p, &w)| Homogeneous::new(p, w))
-        .collect()
 }
 
 /// The certificate of the module docs on two restricted nets of one

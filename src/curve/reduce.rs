@@ -34,6 +34,7 @@
 //! tolerance is refused.
 
 use super::check_tolerance;
+use crate::bernstein::elevate_degree;
 use crate::{BSpline, Bezier, Curve, Error};
 use nalgebra::{Point, SVector};
 
@@ -82,17 +83,11 @@ fn reduce_points<const D: usize>(p: &[Point<f64, D>]) -> (Vec<Point<f64, D>>, f6
         }
     }
     let magnitude = p.iter().map(|x| x.coords.amax()).fold(0.0_f64, f64::max);
-    let mut bound = 0.0_f64;
-    for (i, pi) in p.iter().enumerate() {
-        let mut e = SVector::<f64, D>::zeros();
-        if i > 0 {
-            e += q[i - 1] * a(i);
-        }
-        if i < n {
-            e += q[i] * b(i);
-        }
-        bound = bound.max((pi.coords - e).norm());
-    }
+    let bound = elevate_degree(&q, 1)
+        .iter()
+        .zip(p)
+        .map(|(e, pi)| (pi.coords - e).norm())
+        .fold(0.0_f64, f64::max);
     // The elevation, differences and norm of the check err by a few ε of
     // the largest coordinate; the reduced points can exceed the original
     // ones by the condition of the system (below 4 for these weights).

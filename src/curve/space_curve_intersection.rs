@@ -2,8 +2,8 @@
 //! through the planar search on a projection (see
 //! [`intersect_space_curves`]).
 
-use super::curve_intersection::{checked_spans, intersect_spans, working_scale};
-use super::{CurveIntersection, RationalBezier, RationalBezierSpan, max_abs_coordinate};
+use super::curve_intersection::{checked_spans, intersect_spans, spans_extent, working_scale};
+use super::{CurveIntersection, RationalBezier, RationalBezierSpan};
 use crate::{Curve, Error};
 use nalgebra::{Matrix2, Matrix3, Point, Point2, Point3, SymmetricEigen, Unit, Vector2, Vector3};
 
@@ -76,23 +76,8 @@ pub fn intersect_space_curves<A: Curve<3> + ?Sized, B: Curve<3> + ?Sized>(
     tolerance: f64,
 ) -> Result<Vec<CurveIntersection<3>>, Error> {
     let (spans_a, spans_b) = checked_spans(a, b, tolerance)?;
-    let magnitude = spans_a
-        .iter()
-        .chain(&spans_b)
-        .map(|s| max_abs_coordinate(s.curve.points()))
-        .fold(0.0, f64::max);
-    let largest = |spans: &[RationalBezierSpan<3>]| {
-        spans
-            .iter()
-            .map(|s| s.curve.points().len())
-            .max()
-            .unwrap_or(0)
-    };
-    working_scale(
-        tolerance,
-        2.0 * magnitude,
-        largest(&spans_a) * largest(&spans_b),
-    )?;
+    let (magnitude, coefficients) = spans_extent(&spans_a, &spans_b);
+    working_scale(tolerance, 2.0 * magnitude, coefficients)?;
     let directions = projection_directions(&spans_a, &spans_b);
     let mut overlap = None;
     let mut best: Option<(usize, Vec<CurveIntersection<3>>)> = None;

@@ -6,7 +6,7 @@
 use super::patch::{Jet, Patch, first_jet, project_jet, rounding_pad, tensor_jet};
 use super::search::{PatchSet, intersect, occluded};
 use super::search_pieces::SearchPieces;
-use crate::bernstein::restrict;
+use crate::bernstein::{eval_with_derivative, restrict};
 use crate::curve::{Homogeneous, power_of_two_near, unit_direction};
 use crate::surface::oriented;
 use crate::{Aabb, Error, Hit, Ray, Tolerance};
@@ -389,7 +389,7 @@ impl PatchTable {
                 })
                 .collect();
             let along_t = if across_u { t } else { s };
-            let (f, df) = bernstein_with_derivative(&row, along_t);
+            let (f, df) = eval_with_derivative(&row, along_t)?;
             let n = f.cross(&df);
             let resolved = n.norm() > 1e-7 * f.norm() * df.norm();
             if !resolved {
@@ -646,21 +646,4 @@ pub(crate) fn check_rational_partials(table: &PatchTable) -> Result<(), Error> {
         }
     }
     Ok(())
-}
-
-/// `F(t)` and `F′(t)` of the polynomial with Bernstein coefficients `c`
-/// (de Casteljau; `F′ = n·(difference of the last two points)`).
-fn bernstein_with_derivative(c: &[Vector3<f64>], t: f64) -> (Vector3<f64>, Vector3<f64>) {
-    let mut work = c.to_vec();
-    let n = work.len() - 1;
-    if n == 0 {
-        return (work[0], Vector3::zeros());
-    }
-    for level in 0..n - 1 {
-        for j in 0..n - level {
-            work[j] = work[j] * (1.0 - t) + work[j + 1] * t;
-        }
-    }
-    let d = (work[1] - work[0]) * n as f64;
-    (work[0] * (1.0 - t) + work[1] * t, d)
 }
